@@ -1,0 +1,219 @@
+"""BEM inflow-angle residual and induced velocities (paper Eqs. (7)-(9), with Prandtl's F).
+
+With ``sigma = B c / (2 pi r)``, ``C_x = cl cos(phi) - cd sin(phi)``,
+``C_theta = cl sin(phi) + cd cos(phi)`` (Eq. 7) and ``V_theta = Omega r``,
+equating the momentum thrust and torque (Eqs. 1, 2, both multiplied by ``F``)
+with the blade-element ones (Eqs. 5, 6) and closing with the inflow geometry
+``tan(phi) = u_x / (V_theta - u_theta/2)`` gives Eq. (9) generalised by ``F``:
+
+    R(phi) = (V_x/V_theta) (sigma C_theta + 4 F sin cos) + sigma C_x - 4 F sin^2
+
+and the induced velocities (Eq. 8 with ``F``):
+
+    u_theta = 2 sigma C_theta V_theta / D,   u_x = V_x + sigma C_x V_theta / D,
+    D = 4 F sin(phi) cos(phi) + sigma C_theta.
+
+Both forms stay regular at ``V_x = 0`` (hover).  The functions below take
+``cl``, ``cd`` and ``F`` as independent arguments, so callers chain in their
+own polar and loss model (the BEM inflow solve) or fixed coefficients (the
+BILD reference station).  Partials are *explicit*: the phi partial holds
+``cl``, ``cd`` and ``F`` fixed.
+
+All functions broadcast and accept complex input (complex step); the
+returned partials are evaluated at the real parts.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+
+def _real(x):
+    return np.real(x) if np.iscomplexobj(x) else x
+
+
+class InflowResidual(NamedTuple):
+    """Residual of Eq. (9) (with F) and its explicit partials (all dimensionless except as noted).
+
+    Attributes
+    ----------
+    residual : ndarray
+        R(phi).
+    dR_dphi : ndarray
+        Partial at fixed cl, cd, F (1/rad).
+    dR_dv_axial, dR_dv_theta : ndarray
+        Partials with respect to the velocities (s/m).
+    dR_dsigma, dR_dcl, dR_dcd, dR_dF : ndarray
+        Partials with respect to solidity, lift and drag coefficients and loss factor.
+    """
+
+    residual: np.ndarray
+    dR_dphi: np.ndarray
+    dR_dv_axial: np.ndarray
+    dR_dv_theta: np.ndarray
+    dR_dsigma: np.ndarray
+    dR_dcl: np.ndarray
+    dR_dcd: np.ndarray
+    dR_dF: np.ndarray
+
+
+class InducedVelocities(NamedTuple):
+    """Induced velocities of Eq. (8) (with F) and their explicit partials.
+
+    Attributes
+    ----------
+    u_axial, u_theta : ndarray
+        Axial velocity at the disk ``u_x`` and tangential induced velocity ``u_theta`` (m/s).
+    du_axial_d<x>, du_theta_d<x> : ndarray
+        Partials with respect to phi (m/s/rad), v_axial, v_theta (1), sigma, cl, cd and F (m/s).
+    """
+
+    u_axial: np.ndarray
+    u_theta: np.ndarray
+    du_axial_dphi: np.ndarray
+    du_axial_dv_axial: np.ndarray
+    du_axial_dv_theta: np.ndarray
+    du_axial_dsigma: np.ndarray
+    du_axial_dcl: np.ndarray
+    du_axial_dcd: np.ndarray
+    du_axial_dF: np.ndarray
+    du_theta_dphi: np.ndarray
+    du_theta_dv_axial: np.ndarray
+    du_theta_dv_theta: np.ndarray
+    du_theta_dsigma: np.ndarray
+    du_theta_dcl: np.ndarray
+    du_theta_dcd: np.ndarray
+    du_theta_dF: np.ndarray
+
+
+def force_coefficients(phi, cl, cd):
+    """Axial and tangential force coefficients of Eq. (7).
+
+    Returns
+    -------
+    c_x, c_theta : ndarray
+        ``C_x = cl cos(phi) - cd sin(phi)``, ``C_theta = cl sin(phi) + cd cos(phi)``.
+        Note ``dC_x/dphi = -C_theta`` and ``dC_theta/dphi = C_x`` at fixed cl, cd.
+    """
+    s, c = np.sin(phi), np.cos(phi)
+    return cl * c - cd * s, cl * s + cd * c
+
+
+def _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
+    s, c = np.sin(phi), np.cos(phi)
+    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
+    lam = v_axial / v_theta
+    return lam * (sigma * c_theta + 4.0 * F * s * c) + sigma * c_x - 4.0 * F * s * s
+
+
+def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """Residual of Eq. (9) generalised by the loss factor, with explicit partials.
+
+    Parameters
+    ----------
+    phi : array_like
+        Inflow angle (rad).
+    v_axial : array_like
+        Freestream axial velocity V_x (m/s), >= 0.
+    v_theta : array_like
+        Blade rotational speed Omega r (m/s), > 0.
+    sigma : array_like
+        Local solidity ``B c / (2 pi r)``.
+    cl, cd : array_like
+        Section lift and drag coefficients.
+    F : array_like
+        Prandtl loss factor.
+
+    Returns
+    -------
+    InflowResidual
+    """
+    value = _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
+    phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
+    s, c = np.sin(phi), np.cos(phi)
+    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
+    lam = v_axial / v_theta
+    bracket = sigma * c_theta + 4.0 * F * s * c
+    shape = np.broadcast(value, phi).shape
+    return InflowResidual(
+        residual=value,
+        dR_dphi=np.broadcast_to(lam * (sigma * c_x + 4.0 * F * np.cos(2.0 * phi))
+                                - sigma * c_theta - 4.0 * F * np.sin(2.0 * phi), shape),
+        dR_dv_axial=np.broadcast_to(bracket / v_theta, shape),
+        dR_dv_theta=np.broadcast_to(-lam * bracket / v_theta, shape),
+        dR_dsigma=np.broadcast_to(lam * c_theta + c_x, shape),
+        dR_dcl=np.broadcast_to(sigma * (lam * s + c), shape),
+        dR_dcd=np.broadcast_to(sigma * (lam * c - s), shape),
+        dR_dF=np.broadcast_to(4.0 * s * (lam * c - s), shape),
+    )
+
+
+def inflow_residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """Only the residual of Eq. (9) with F (real or complex), without partials."""
+    return _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
+
+
+def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """Induced velocities of Eq. (8) generalised by the loss factor, with explicit partials.
+
+    Parameters are those of :func:`inflow_residual`.
+
+    Returns
+    -------
+    InducedVelocities
+        ``u_axial = V_x + sigma C_x V_theta / D`` and
+        ``u_theta = 2 sigma C_theta V_theta / D`` with
+        ``D = 4 F sin(phi) cos(phi) + sigma C_theta``.
+    """
+    s, c = np.sin(phi), np.cos(phi)
+    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
+    P = 4.0 * F * s * c
+    N = sigma * c_theta
+    M = sigma * c_x
+    D = P + N
+    u_theta = 2.0 * v_theta * N / D
+    u_axial = v_axial + v_theta * M / D
+
+    phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
+    s, c = np.sin(phi), np.cos(phi)
+    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
+    P = 4.0 * F * s * c
+    N = sigma * c_theta
+    M = sigma * c_x
+    D = P + N
+    shape = np.broadcast(u_axial, u_theta, phi).shape
+
+    # Intermediate partials: P(phi, F), N(phi, sigma, cl, cd), M(phi, sigma, cl, cd).
+    dP_dphi, dP_dF = 4.0 * F * np.cos(2.0 * phi), 4.0 * s * c
+    dN_dphi, dN_dsigma, dN_dcl, dN_dcd = sigma * c_x, c_theta, sigma * s, sigma * c
+    dM_dphi, dM_dsigma, dM_dcl, dM_dcd = -sigma * c_theta, c_x, sigma * c, -sigma * s
+
+    # u_theta = 2 V N / (P + N)
+    ut_N = 2.0 * v_theta * P / D**2
+    ut_P = -2.0 * v_theta * N / D**2
+    # u_x = V_x + V M / (P + N)
+    ux_M = v_theta / D
+    ux_D = -v_theta * M / D**2
+
+    def b(x):
+        return np.broadcast_to(x, shape)
+
+    return InducedVelocities(
+        u_axial=u_axial,
+        u_theta=u_theta,
+        du_axial_dphi=b(ux_M * dM_dphi + ux_D * (dP_dphi + dN_dphi)),
+        du_axial_dv_axial=b(np.ones(shape)),
+        du_axial_dv_theta=b(M / D),
+        du_axial_dsigma=b(ux_M * dM_dsigma + ux_D * dN_dsigma),
+        du_axial_dcl=b(ux_M * dM_dcl + ux_D * dN_dcl),
+        du_axial_dcd=b(ux_M * dM_dcd + ux_D * dN_dcd),
+        du_axial_dF=b(ux_D * dP_dF),
+        du_theta_dphi=b(ut_N * dN_dphi + ut_P * dP_dphi),
+        du_theta_dv_axial=b(np.zeros(shape)),
+        du_theta_dv_theta=b(2.0 * N / D),
+        du_theta_dsigma=b(ut_N * dN_dsigma),
+        du_theta_dcl=b(ut_N * dN_dcl),
+        du_theta_dcd=b(ut_N * dN_dcd),
+        du_theta_dF=b(ut_P * dP_dF),
+    )

@@ -1,0 +1,208 @@
+"""RotorPerformanceComp: integrate section loads into rotor performance (paper Table 2)."""
+from __future__ import annotations
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
+
+_RPM_TO_RAD_S = np.pi / 30.0
+_SQRT_2PI = np.sqrt(2.0 * np.pi)
+
+#: Per-design outputs: name -> (units, description).
+PERFORMANCE_OUTPUTS = {
+    "thrust": ("N", "rotor thrust T = sum(dT/dr dr)"),
+    "torque": ("N*m", "rotor torque Q = sum(dQ/dr dr)"),
+    "power": ("W", "shaft power P = Omega Q"),
+    "efficiency": (None, "propulsive efficiency eta = V_x T / (Omega Q)"),
+    "figure_of_merit": (None, "figure of merit FM = T/P sqrt(T / (2 pi R^2 rho)) (odd in T)"),
+    "thrust_coefficient": (None, "C_T = T / (rho n^2 D^4), n in rev/s, D = 2R"),
+    "torque_coefficient": (None, "C_Q = Q / (rho n^2 D^5)"),
+    "power_coefficient": (None, "C_P = P / (rho n^3 D^5)"),
+    "energy_loss": ("W", "rate of energy loss E = Omega Q - V_x T"),
+    "solidity": (None, "blade solidity sigma_r = B sum(c dr) / (pi R^2)"),
+    "blade_loading": (None, "blade loading C_T / sigma_r"),
+}
+
+# Which per-design primitives each output depends on (T, Q, S = sum(c dr) come from distributions).
+_DEPENDS = {
+    "thrust": ("T",),
+    "torque": ("Q",),
+    "power": ("Q", "rpm"),
+    "efficiency": ("T", "Q", "v_axial", "rpm"),
+    "figure_of_merit": ("T", "Q", "rpm", "radius", "rho"),
+    "thrust_coefficient": ("T", "rpm", "radius", "rho"),
+    "torque_coefficient": ("Q", "rpm", "radius", "rho"),
+    "power_coefficient": ("Q", "rpm", "radius", "rho"),
+    "energy_loss": ("T", "Q", "v_axial", "rpm"),
+    "solidity": ("S", "radius"),
+    "blade_loading": ("T", "S", "rpm", "radius", "rho"),
+}
+
+
+def _abs(x):
+    """Complex-safe absolute value."""
+    return np.where(np.real(x) < 0.0, -x, x)
+
+
+def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
+    """Performance metrics of Table 2 and their partials with respect to the primitives.
+
+    Parameters
+    ----------
+    T, Q : array_like
+        Thrust (N) and torque (N m).
+    S : array_like
+        Blade area per blade ``sum(c dr)`` (m^2).
+    v_axial, rpm, radius, rho : array_like
+        Axial speed (m/s), rotational speed (rpm), tip radius (m), density (kg/m^3).
+    num_blades : int
+        Number of blades B.
+
+    Returns
+    -------
+    values : dict
+        Output name -> array.
+    partials : dict
+        Output name -> {primitive: array}; primitives are 'T', 'Q', 'S', 'v_axial',
+        'rpm', 'radius', 'rho'.
+    """
+    omega = rpm * _RPM_TO_RAD_S
+    n = rpm / 60.0
+    D = 2.0 * radius
+    P = omega * Q
+    abs_T = _abs(T)
+    sqrt_abs_T = np.sqrt(abs_T)
+    eta = v_axial * T / P
+    fm = T * sqrt_abs_T / (P * _SQRT_2PI * radius * np.sqrt(rho))
+    ct = T / (rho * n**2 * D**4)
+    cq = Q / (rho * n**2 * D**5)
+    cp = P / (rho * n**3 * D**5)
+    E = P - v_axial * T
+    sol = num_blades * S / (np.pi * radius**2)
+    bl = ct / sol
+    values = {"thrust": T, "torque": Q, "power": P, "efficiency": eta, "figure_of_merit": fm,
+              "thrust_coefficient": ct, "torque_coefficient": cq, "power_coefficient": cp,
+              "energy_loss": E, "solidity": sol, "blade_loading": bl}
+
+    one = np.ones(np.shape(T))
+    partials = {
+        "thrust": {"T": one},
+        "torque": {"Q": one},
+        "power": {"Q": omega * one, "rpm": _RPM_TO_RAD_S * Q},
+        "efficiency": {"T": v_axial / P, "Q": -eta / Q, "v_axial": T / P, "rpm": -eta / rpm},
+        "figure_of_merit": {"T": 1.5 * sqrt_abs_T / (P * _SQRT_2PI * radius * np.sqrt(rho)),
+                            "Q": -fm / Q, "rpm": -fm / rpm, "radius": -fm / radius,
+                            "rho": -0.5 * fm / rho},
+        "thrust_coefficient": {"T": 1.0 / (rho * n**2 * D**4), "rpm": -2.0 * ct / rpm,
+                               "radius": -4.0 * ct / radius, "rho": -ct / rho},
+        "torque_coefficient": {"Q": 1.0 / (rho * n**2 * D**5), "rpm": -2.0 * cq / rpm,
+                               "radius": -5.0 * cq / radius, "rho": -cq / rho},
+        "power_coefficient": {"Q": omega / (rho * n**3 * D**5), "rpm": -2.0 * cp / rpm,
+                              "radius": -5.0 * cp / radius, "rho": -cp / rho},
+        "energy_loss": {"T": -v_axial * one, "Q": omega * one, "v_axial": -T,
+                        "rpm": _RPM_TO_RAD_S * Q},
+        "solidity": {"S": num_blades / (np.pi * radius**2) * one, "radius": -2.0 * sol / radius},
+        "blade_loading": {"T": 1.0 / (rho * n**2 * D**4 * sol), "S": -bl / S, "rpm": -2.0 * bl / rpm,
+                          "radius": -2.0 * bl / radius, "rho": -bl / rho},
+    }
+    return values, partials
+
+
+class RotorPerformanceComp(om.ExplicitComponent):
+    """Rotor performance from sectional thrust and torque distributions (paper Table 2).
+
+    Integrals are sums over the stations, ``T = sum(dT/dr * dr)``, consistent
+    with the station widths of :class:`~bild_mdo.bem.stations.StationsComp`.
+    The figure of merit is extended as an odd function of thrust,
+    ``FM = T sqrt(|T|) / (P sqrt(2 pi R^2 rho))``, so that it stays real when
+    a windmilling rotor produces negative thrust.
+
+    Options
+    -------
+    num_nodes : int
+        Number of designs / operating points (axis 0).
+    num_radial : int
+        Number of radial stations (axis 1).
+    num_blades : int
+        Number of blades B.
+
+    Inputs
+    ------
+    dthrust_dr[nn, nr] (N/m), dtorque_dr[nn, nr] (N*m/m)
+        Sectional thrust and torque per unit span (all blades).
+    dr[nn, nr] (m)
+        Station widths.
+    chord[nn, nr] (m)
+        Chord distribution (for the solidity).
+    v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), rho[nn] (kg/m**3)
+        Axial speed, rotational speed, tip radius, air density.
+
+    Outputs
+    -------
+    thrust[nn] (N), torque[nn] (N*m), power[nn] (W), efficiency[nn], figure_of_merit[nn],
+    thrust_coefficient[nn], torque_coefficient[nn], power_coefficient[nn], energy_loss[nn] (W),
+    solidity[nn], blade_loading[nn]
+    """
+
+    def initialize(self):
+        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
+        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations (axis 1)")
+        self.options.declare("num_blades", types=int, desc="number of blades B")
+
+    def setup(self):
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        self.add_input("dthrust_dr", val=np.ones((nn, nr)), units="N/m", desc="sectional thrust per unit span")
+        self.add_input("dtorque_dr", val=np.ones((nn, nr)), units="N*m/m", desc="sectional torque per unit span")
+        self.add_input("dr", val=np.full((nn, nr), 0.1), units="m", desc="radial width of each station")
+        self.add_input("chord", val=np.full((nn, nr), 0.1), units="m", desc="blade chord")
+        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="freestream axial velocity V_x")
+        self.add_input("rpm", val=np.full(nn, 1000.0), units="rpm", desc="rotational speed")
+        self.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius R")
+        self.add_input("rho", val=np.full(nn, 1.225), units="kg/m**3", desc="air density")
+        for name, (units, desc) in PERFORMANCE_OUTPUTS.items():
+            self.add_output(name, val=np.ones(nn), units=units, desc=desc)
+
+    def setup_partials(self):
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        rows_d, cols_d = node_wrt_dist(nn, nr)
+        rows_n, cols_n = node_wrt_node(nn)
+        dist_of = {"T": ("dthrust_dr",), "Q": ("dtorque_dr",), "S": ("chord",)}
+        for out, prims in _DEPENDS.items():
+            wrt_dist = {"dr"} | {name for p in prims for name in dist_of.get(p, ())}
+            for name in sorted(wrt_dist):
+                self.declare_partials(out, name, rows=rows_d, cols=cols_d)
+            for p in prims:
+                if p not in dist_of:
+                    self.declare_partials(out, p, rows=rows_n, cols=cols_n)
+
+    def _primitives(self, inputs):
+        T = np.sum(inputs["dthrust_dr"] * inputs["dr"], axis=1)
+        Q = np.sum(inputs["dtorque_dr"] * inputs["dr"], axis=1)
+        S = np.sum(inputs["chord"] * inputs["dr"], axis=1)
+        return T, Q, S
+
+    def compute(self, inputs, outputs):
+        T, Q, S = self._primitives(inputs)
+        values, _ = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
+                                      inputs["rho"], self.options["num_blades"])
+        for name, val in values.items():
+            outputs[name] = val
+
+    def compute_partials(self, inputs, partials):
+        T, Q, S = self._primitives(inputs)
+        _, d = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
+                                 inputs["rho"], self.options["num_blades"])
+        dr = inputs["dr"]
+        # d(primitive)/d(dr) per station
+        dprim_ddr = {"T": inputs["dthrust_dr"], "Q": inputs["dtorque_dr"], "S": inputs["chord"]}
+        dist_of = {"T": "dthrust_dr", "Q": "dtorque_dr", "S": "chord"}
+        for out, prims in _DEPENDS.items():
+            ddr = np.zeros_like(dr)
+            for p in prims:
+                if p in dist_of:
+                    partials[out, dist_of[p]] = (d[out][p][:, None] * dr).ravel()
+                    ddr = ddr + d[out][p][:, None] * dprim_ddr[p]
+                else:
+                    partials[out, p] = d[out][p]
+            partials[out, "dr"] = ddr.ravel()

@@ -1,0 +1,190 @@
+"""Prandtl tip and hub loss factor with its partial derivatives.
+
+The paper (Sec. 3) uses Prandtl's formulation in every result:
+
+    F_tip = 2/pi * acos(exp(-f_tip)),  f_tip = B (R - r) / (2 r |sin phi|)
+    F_hub = 2/pi * acos(exp(-f_hub)),  f_hub = B (r - r_hub) / (2 r_hub |sin phi|)
+    F = F_tip * F_hub
+
+Two guards keep the factor finite and its derivatives consistent:
+
+* ``|sin phi|`` is floored at :data:`SIN_PHI_FLOOR` (the derivative with
+  respect to ``phi`` is zero where the floor is active), so ``phi -> 0``
+  gives a huge exponent instead of a division by zero.
+* The exponent is clipped to ``[EXPONENT_MIN, EXPONENT_MAX]`` with zero
+  derivative outside.  The upper clip avoids overflow in the derivative
+  ``dF/df = 2/pi / sqrt(exp(2 f) - 1)`` (at ``f = 100`` the factor is 1 to
+  round-off and the true derivative is 1e-44).  The lower clip keeps the
+  derivative finite at ``r -> R`` (and ``r -> r_hub``), where the exact
+  derivative ``~ 1/sqrt(2 f)`` is singular; there ``F ~ 1e-5``, i.e. the
+  section carries essentially no load, which is the physical limit.
+
+All functions accept real or complex arrays (complex step) and broadcast.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+#: Floor on ``|sin phi|`` (avoids 0/0 at phi = 0; the loss factor is 1 there anyway).
+SIN_PHI_FLOOR = 1e-12
+#: Clip range of the Prandtl exponent ``f``.
+EXPONENT_MIN = 1e-10
+EXPONENT_MAX = 100.0
+
+LOSS_MODELS = ("tip_hub", "tip", "none")
+
+
+class PrandtlLoss(NamedTuple):
+    """Loss factor ``F`` and its partial derivatives (all broadcast to a common shape).
+
+    Attributes
+    ----------
+    F : ndarray
+        Loss factor, in (0, 1].
+    dF_dphi : ndarray
+        Partial with respect to the inflow angle (1/rad).
+    dF_dr : ndarray
+        Partial with respect to the station radius (1/m).
+    dF_dradius : ndarray
+        Partial with respect to the tip radius (1/m).
+    dF_dhub_radius : ndarray
+        Partial with respect to the hub radius (1/m).
+    """
+
+    F: np.ndarray
+    dF_dphi: np.ndarray
+    dF_dr: np.ndarray
+    dF_dradius: np.ndarray
+    dF_dhub_radius: np.ndarray
+
+
+def _real(x):
+    return np.real(x) if np.iscomplexobj(x) else x
+
+
+def _abs_sin(phi):
+    """Complex-safe ``|sin phi|`` floored at SIN_PHI_FLOOR, with its phi derivative."""
+    s = np.sin(phi)
+    sign = np.sign(_real(s))
+    abs_s = sign * s
+    dabs = sign * np.cos(phi)
+    floored = _real(abs_s) < SIN_PHI_FLOOR
+    abs_s = np.where(floored, SIN_PHI_FLOOR, abs_s)
+    dabs = np.where(floored, 0.0, _real(dabs))
+    return abs_s, dabs
+
+
+def _acos_factor(f):
+    """``2/pi acos(exp(-f))`` with ``f`` clipped, and its derivative with respect to ``f``."""
+    fr = _real(f)
+    inside = (fr > EXPONENT_MIN) & (fr < EXPONENT_MAX)
+    fc = np.where(fr <= EXPONENT_MIN, EXPONENT_MIN, np.where(fr >= EXPONENT_MAX, EXPONENT_MAX, f))
+    value = 2.0 / np.pi * np.arccos(np.exp(-fc))
+    # d/df acos(e^-f) = e^-f / sqrt(1 - e^-2f) = 1 / sqrt(e^2f - 1); expm1 keeps it accurate at small f.
+    deriv = np.where(inside, 2.0 / np.pi / np.sqrt(np.expm1(2.0 * np.clip(fr, EXPONENT_MIN, EXPONENT_MAX))), 0.0)
+    return value, deriv
+
+
+def prandtl_loss(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
+    """Prandtl tip/hub loss factor ``F(phi, r, R, r_hub)`` and its partials.
+
+    Parameters
+    ----------
+    phi : array_like
+        Inflow angle (rad).
+    r : array_like
+        Station radius (m), ``r_hub <= r <= R``.
+    radius : array_like
+        Tip radius R (m), broadcast against ``r``.
+    hub_radius : array_like
+        Hub radius r_hub (m); must be positive for ``loss_model='tip_hub'``.
+    num_blades : int
+        Number of blades B.
+    loss_model : {'tip_hub', 'tip', 'none'}
+        Which losses to include.
+
+    Returns
+    -------
+    PrandtlLoss
+        ``F`` and its partials with respect to phi, r, radius and hub_radius.
+    """
+    if loss_model not in LOSS_MODELS:
+        raise ValueError(f"loss_model must be one of {LOSS_MODELS}, got {loss_model!r}")
+    phi, r, radius, hub_radius = np.broadcast_arrays(phi, r, radius, hub_radius)
+    dtype = np.result_type(phi, r, radius, hub_radius, float)
+    zero = np.zeros(phi.shape)
+    if loss_model == "none":
+        return PrandtlLoss(np.ones(phi.shape, dtype=dtype), zero, zero, zero, zero)
+
+    if loss_model == "tip_hub" and np.any(_real(hub_radius) <= 0.0):
+        raise ValueError("hub_radius must be positive for loss_model='tip_hub' "
+                         "(use loss_model='tip' for a rotor without hub)")
+    # Values carry complex parts (complex step); partials are always real.
+    is_complex = np.iscomplexobj(dtype.type(0))
+    F_tip, (dFt_dphi, dFt_dr, dFt_dR) = _tip_factor(*map(_real, (phi, r, radius)), num_blades)
+    if is_complex:
+        F_tip = _tip_factor(phi, r, radius, num_blades)[0]
+    if loss_model == "tip":
+        return PrandtlLoss(F_tip, dFt_dphi, dFt_dr, dFt_dR, zero)
+
+    F_hub, (dFh_dphi, dFh_dr, dFh_drh) = _hub_factor(*map(_real, (phi, r, hub_radius)), num_blades)
+    if is_complex:
+        F_hub = _hub_factor(phi, r, hub_radius, num_blades)[0]
+    F_tip_r, F_hub_r = _real(F_tip), _real(F_hub)
+    return PrandtlLoss(
+        F_tip * F_hub,
+        F_hub_r * dFt_dphi + F_tip_r * dFh_dphi,
+        F_hub_r * dFt_dr + F_tip_r * dFh_dr,
+        F_hub_r * dFt_dR,
+        F_tip_r * dFh_drh,
+    )
+
+
+def _tip_factor(phi, r, radius, num_blades):
+    """F_tip and its partials (phi, r, R); f = B (R - r) / (2 r |sin phi|)."""
+    abs_s, dabs_dphi = _abs_sin(phi)
+    half_b = 0.5 * num_blades
+    f = half_b * (radius - r) / (r * abs_s)
+    value, dF_df = _acos_factor(f)
+    df_dphi = -f / abs_s * dabs_dphi
+    df_dr = -half_b * radius / (r * r * abs_s)
+    df_dR = half_b / (r * abs_s)
+    return value, (dF_df * df_dphi, dF_df * df_dr, dF_df * df_dR)
+
+
+def _hub_factor(phi, r, hub_radius, num_blades):
+    """F_hub and its partials (phi, r, r_hub); g = B (r - r_hub) / (2 r_hub |sin phi|)."""
+    abs_s, dabs_dphi = _abs_sin(phi)
+    half_b = 0.5 * num_blades
+    g = half_b * (r - hub_radius) / (hub_radius * abs_s)
+    value, dF_dg = _acos_factor(g)
+    dg_dphi = -g / abs_s * dabs_dphi
+    dg_dr = half_b / (hub_radius * abs_s)
+    dg_drh = -half_b * r / (hub_radius * hub_radius * abs_s)
+    return value, (dF_dg * dg_dphi, dF_dg * dg_dr, dF_dg * dg_drh)
+
+
+def prandtl_loss_and_dphi(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
+    """Real-valued fast path of :func:`prandtl_loss`: only ``F`` and ``dF/dphi`` (for the inflow solve).
+
+    Returns
+    -------
+    F, dF_dphi : ndarray
+    """
+    if loss_model == "none":
+        shape = np.broadcast(phi, r).shape
+        return np.ones(shape), np.zeros(shape)
+    abs_s, dabs_dphi = _abs_sin(phi)
+    half_b = 0.5 * num_blades
+    f = half_b * (radius - r) / (r * abs_s)
+    F, dF_df = _acos_factor(f)
+    # df/dphi = -f/|sin| d|sin|/dphi for both exponents.
+    dlog = -dabs_dphi / abs_s
+    dF_dphi = dF_df * f * dlog
+    if loss_model == "tip":
+        return F, dF_dphi
+    g = half_b * (r - hub_radius) / (hub_radius * abs_s)
+    G, dG_dg = _acos_factor(g)
+    return F * G, dF_dphi * G + F * dG_dg * g * dlog

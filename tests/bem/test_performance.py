@@ -1,0 +1,67 @@
+"""RotorPerformanceComp: paper Table 2 metrics by hand, and partials."""
+import numpy as np
+import openmdao.api as om
+import pytest
+from openmdao.utils.assert_utils import assert_check_partials
+
+from bild_mdo.bem.performance import RotorPerformanceComp
+
+NN, NR, B = 3, 7, 3
+
+
+def _problem(v_axial):
+    rng = np.random.default_rng(7)
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("perf", RotorPerformanceComp(num_nodes=NN, num_radial=NR, num_blades=B),
+                             promotes=["*"])
+    prob.setup(force_alloc_complex=True)
+    prob.set_val("dthrust_dr", rng.uniform(10.0, 400.0, (NN, NR)))
+    prob.set_val("dtorque_dr", rng.uniform(5.0, 80.0, (NN, NR)))
+    prob.set_val("dr", rng.uniform(0.02, 0.1, (NN, NR)))
+    prob.set_val("chord", rng.uniform(0.05, 0.15, (NN, NR)))
+    prob.set_val("v_axial", v_axial)
+    prob.set_val("rpm", [1200.0, 2400.0, 3100.0])
+    prob.set_val("radius", [0.7, 1.1, 1.6])
+    prob.set_val("rho", [1.225, 1.0, 0.9])
+    prob.run_model()
+    return prob
+
+
+@pytest.mark.filterwarnings("ignore:(?s).*zero derivatives")  # eta = 0 in hover: some partials vanish
+@pytest.mark.parametrize("v_axial", [[0.0, 0.0, 0.0], [0.0, 12.0, 45.0]], ids=["hover", "cruise"])
+def test_partials(v_axial):
+    prob = _problem(v_axial)
+    assert_check_partials(prob.check_partials(method="cs", out_stream=None), atol=1e-10, rtol=1e-10)
+
+
+def test_metrics_by_hand():
+    prob = _problem([0.0, 12.0, 45.0])
+    g = prob.get_val
+    T = (g("dthrust_dr") * g("dr")).sum(axis=1)
+    Q = (g("dtorque_dr") * g("dr")).sum(axis=1)
+    omega = g("rpm") * np.pi / 30.0
+    n, D, rho, R, vx = g("rpm") / 60.0, 2.0 * g("radius"), g("rho"), g("radius"), g("v_axial")
+    # Paper Table 2.
+    np.testing.assert_allclose(g("thrust"), T, rtol=1e-14)
+    np.testing.assert_allclose(g("torque"), Q, rtol=1e-14)
+    np.testing.assert_allclose(g("power"), omega * Q, rtol=1e-14)
+    np.testing.assert_allclose(g("efficiency"), vx * T / (omega * Q), rtol=1e-14)
+    np.testing.assert_allclose(g("figure_of_merit"), T / (omega * Q) * np.sqrt(T / (2 * np.pi * R**2 * rho)),
+                               rtol=1e-14)
+    np.testing.assert_allclose(g("thrust_coefficient"), T / (rho * n**2 * D**4), rtol=1e-14)
+    np.testing.assert_allclose(g("torque_coefficient"), Q / (rho * n**2 * D**5), rtol=1e-14)
+    # C_P = 2 pi C_Q follows from P = 2 pi n Q (hand).
+    np.testing.assert_allclose(g("power_coefficient"), 2 * np.pi * g("torque_coefficient"), rtol=1e-14)
+    np.testing.assert_allclose(g("energy_loss"), omega * Q - vx * T, rtol=1e-14)
+    sol = B * (g("chord") * g("dr")).sum(axis=1) / (np.pi * R**2)
+    np.testing.assert_allclose(g("solidity"), sol, rtol=1e-14)
+    np.testing.assert_allclose(g("blade_loading"), g("thrust_coefficient") / sol, rtol=1e-14)
+
+
+def test_figure_of_merit_is_odd_in_thrust():
+    prob = _problem([0.0, 0.0, 0.0])
+    fm = prob.get_val("figure_of_merit").copy()
+    prob.set_val("dthrust_dr", -prob.get_val("dthrust_dr"))
+    prob.run_model()
+    np.testing.assert_allclose(prob.get_val("figure_of_merit"), -fm, rtol=1e-14)
+    assert np.all(np.isfinite(prob.get_val("figure_of_merit")))

@@ -1,0 +1,84 @@
+"""Guaranteed-bracket inflow solve (Ning 2014 search order) and the complex-step Newton update."""
+import numpy as np
+import openmdao.api as om
+import pytest
+
+from bild_mdo.bem.root_finding import complex_newton_update, find_brackets, solve_bracketed
+
+
+def _shifted_sine(roots):
+    """R(phi) = sin(phi - root): one root per station at ``root`` (mod pi), derivative cos."""
+    calls = []
+
+    def residual(phi, idx):
+        calls.append(np.array(idx))
+        return np.sin(phi - roots[idx]), np.cos(phi - roots[idx])
+    return residual, calls
+
+
+def test_finds_roots_in_all_three_regions():
+    # Roots in region 1 (0, pi/2), region 2 [-pi/4, 0) and region 3 (pi/2, pi).  sin(phi - a) also
+    # vanishes at a - pi, which for the region-3 roots (a < 3 pi/4) lies below -pi/4, outside region 2.
+    roots = np.array([0.3, 1.2, 1e-3, -0.5, -0.05, 2.0, 2.3, np.pi / 2 - 1e-9])
+    residual, calls = _shifted_sine(roots)
+    phi = solve_bracketed(residual, roots.size)
+    np.testing.assert_allclose(phi, roots, atol=1e-14)
+    # Only stations still iterating are evaluated, so the index sets shrink.
+    assert calls[-1].size < roots.size
+
+
+def test_region_one_takes_precedence():
+    # R = -sin(2 phi - 0.6) has roots at 0.3 (region 1) and 0.3 + pi/2 (region 3); Ning's order
+    # must return the region-1 root.
+    def residual(phi, idx):
+        return -np.sin(2 * phi - 0.6), -2 * np.cos(2 * phi - 0.6)
+    phi = solve_bracketed(residual, 3)
+    np.testing.assert_allclose(phi, 0.3, atol=1e-14)
+
+
+def test_brackets_follow_ning_order():
+    roots = np.array([0.4, -0.3, 2.2])
+    residual, _ = _shifted_sine(roots)
+    lo, hi, r_lo, r_hi = find_brackets(residual, roots.size)
+    np.testing.assert_allclose(lo, [1e-6, -np.pi / 4, np.pi / 2])
+    np.testing.assert_allclose(hi, [np.pi / 2, -1e-6, np.pi - 1e-6])
+    assert np.all(r_lo * r_hi <= 0.0)
+
+
+def test_converges_to_round_off_on_steep_and_flat_residuals():
+    # Residual scales from 1e-6 to 1e6 with a cubic root (flat: Newton slows, bisection rescues).
+    scale = np.array([1e-6, 1.0, 1e6, 1.0])
+    power = np.array([1, 1, 1, 3])
+    root = 0.7
+
+    def residual(phi, idx):
+        d = phi - root
+        return scale[idx] * d ** power[idx], scale[idx] * power[idx] * d ** (power[idx] - 1)
+    phi = solve_bracketed(residual, 4)
+    np.testing.assert_allclose(phi[:3], root, atol=1e-15)
+    assert abs(phi[3] - root) ** 3 <= 1e-13  # converged on |R| <= 1e-13 (RESIDUAL_TOL)
+
+
+def test_no_bracket_raises_analysis_error_naming_station():
+    def residual(phi, idx):
+        value = np.where(idx == 5, 1.0 + phi**2, np.sin(phi - 0.3))
+        return value, np.where(idx == 5, 2 * phi, np.cos(phi - 0.3))
+    with pytest.raises(om.AnalysisError, match=r"design/node 1, station 2"):
+        solve_bracketed(residual, 6, shape=(2, 3))
+
+
+def test_non_finite_residual_raises():
+    def residual(phi, idx):
+        return np.where(idx == 1, np.nan, np.sin(phi - 0.3)), np.cos(phi - 0.3)
+    with pytest.raises(om.AnalysisError, match="not finite"):
+        solve_bracketed(residual, 3)
+
+
+def test_complex_newton_update_carries_exact_derivative():
+    # R(phi; x) = phi^3 + phi - x: dphi/dx = 1 / (3 phi^2 + 1) (implicit function theorem).
+    x = np.array([0.5, 2.0, 10.0])
+    phi = solve_bracketed(lambda p, i: (p**3 + p - x[i], 3 * p**2 + 1), 3)
+    h = 1e-30
+    phi_c = complex_newton_update(phi, phi**3 + phi - (x + 1j * h), 3 * phi**2 + 1)
+    np.testing.assert_allclose(np.real(phi_c), phi, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(np.imag(phi_c) / h, 1.0 / (3 * phi**2 + 1), rtol=1e-14)
