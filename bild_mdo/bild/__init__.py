@@ -1,1 +1,36 @@
-"""bild"""
+"""BILD: the BEM-based ideal-loading design method (paper Sec. 4, Algorithm 1).
+
+:class:`BILDGroup` assembles the whole chain; the components are exported for
+users who build their own groups.
+"""
+from bild_mdo.bild.advance_ratio import AdvanceRatioComp
+from bild_mdo.bild.bild_group import BILDGroup
+from bild_mdo.bild.chord import ChordComp
+from bild_mdo.bild.eta2 import Eta2Comp
+from bild_mdo.bild.geometry import GeometryComp
+from bild_mdo.bild.ideal_loading import IdealLoadingComp
+from bild_mdo.bild.induced_velocity import InducedVelocityComp
+from bild_mdo.bild.inflow_angle import InflowAngleComp
+from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
+from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
+from bild_mdo.bild.reference_station import ReferenceStationComp
+from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
+from bild_mdo.bild.rotational_speed import RotationalSpeedComp
+from bild_mdo.bild.sectional_loads import SectionalLoadsComp
+
+__all__ = [
+    "AdvanceRatioComp",
+    "BILDGroup",
+    "ChordComp",
+    "Eta2Comp",
+    "GeometryComp",
+    "IdealLoadingComp",
+    "InducedVelocityComp",
+    "InflowAngleComp",
+    "ReferenceAirfoilComp",
+    "ReferenceInducedVelocityComp",
+    "ReferenceStationComp",
+    "RootChordCorrectionComp",
+    "RotationalSpeedComp",
+    "SectionalLoadsComp",
+]

@@ -1,0 +1,215 @@
+"""BILDGroup: the BEM-based ideal-loading design method (paper Sec. 4, Algorithm 1) as one group."""
+import numbers
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.airfoil.polar import Polar
+from bild_mdo.atmosphere import AtmosphereComp
+from bild_mdo.bem.performance import PERFORMANCE_OUTPUTS, RotorPerformanceComp
+from bild_mdo.bem.prandtl import LOSS_MODELS
+from bild_mdo.bem.stations import StationsComp
+from bild_mdo.bild.advance_ratio import AdvanceRatioComp
+from bild_mdo.bild.chord import CHORD_FORMS, ChordComp
+from bild_mdo.bild.eta2 import Eta2Comp
+from bild_mdo.bild.geometry import GeometryComp
+from bild_mdo.bild.ideal_loading import IdealLoadingComp
+from bild_mdo.bild.induced_velocity import InducedVelocityComp
+from bild_mdo.bild.inflow_angle import InflowAngleComp
+from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp, default_polar
+from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
+from bild_mdo.bild.reference_station import SECTION_INPUTS, ReferenceStationComp
+from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
+from bild_mdo.bild.rotational_speed import RotationalSpeedComp
+from bild_mdo.bild.sectional_loads import SectionalLoadsComp
+
+INPUT_MODES = ("v_axial", "advance_ratio")
+
+
+def _check_polar(name, value):
+    if value is not None and not isinstance(value, Polar):
+        raise ValueError(f"{name} must be a bild_mdo.airfoil.Polar or None (built-in NACA 4412), "
+                         f"got {type(value).__name__}")
+
+
+def _check_correction(name, value):
+    if value is None:
+        return
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not value > 0.0:
+        raise ValueError(f"{name} must be None (no correction) or a positive number k, got {value!r}")
+
+
+class BILDGroup(om.Group):
+    """Ideal chord and twist of a rotor and its performance, by the BILD method.
+
+    Algorithm 1 of the paper as a feed-forward chain on RunOnce (the two
+    implicit components, the reference-station BEM solve and the quartic for
+    ``eta2``, solve themselves and provide exact linear solves)::
+
+        atmosphere (ISA)            altitude -> rho, mu
+        [advance_ratio]             J, rpm, R -> V_x            (input_mode='advance_ratio')
+        geometry                    R, ratios -> r_hub, r_ref
+        stations                    R, r_hub -> radii, dr       (midpoints of equal annuli)
+        rotational_speed            V_theta = Omega r, Omega r_ref
+        reference_airfoil           Re_ref -> alpha*, C_l*, C_d*                       step 1
+        reference_station           BEM inflow angle at r_ref with c_ref (implicit)     step 2
+        reference_induced_velocity  u_x, u_theta at r_ref, Eq. (8)                      step 2
+        ideal_loading               lambda, Eq. (22)                                    step 3
+        eta2                        quartic, Eq. (27) (implicit)                        step 4
+        induced_velocity            u_x, u_theta, Eqs. (26), (24)                       step 5
+        inflow_angle                phi, W, twist, Eq. (30)                             step 7
+        sectional_loads             F, dT/dr, dQ/dr, dE/dr, Eqs. (1), (2), (12)         step 6
+        chord                       Eq. (31) (or the torque form)                       step 7
+        root_chord_correction       Eq. (32) (optional)
+        performance                 T, Q, P, eta, FM, C_T, C_Q, C_P, E, sigma_r, C_T/sigma_r (Table 2)
+
+    The thrust and torque are those of the ideal loading; the root-chord
+    correction changes only the chord (and with it the solidity), as in the
+    paper's Sec. 5.2.2.
+
+    Options
+    -------
+    num_nodes : int
+        Number of designs / operating points (axis 0).
+    num_radial : int
+        Number of radial stations (axis 1).
+    num_blades : int
+        Number of blades B (default 3).
+    polar : Polar or None
+        Airfoil polar; ``None`` (default) is the built-in NACA 4412.
+    loss_model : str
+        Prandtl loss factor: ``'tip_hub'`` (default), ``'tip'`` or ``'none'``.
+    chord_form : str
+        ``'thrust'`` (Eq. (31), default) or ``'torque'``.
+    root_chord_correction : float or None
+        ``k`` of Eq. (32) on ``r/R``; ``None`` (default) leaves the chord as
+        back-computed.
+    input_mode : str
+        ``'v_axial'`` (default): the axial velocity is an input;
+        ``'advance_ratio'``: the advance ratio ``J = V_x/(n D)`` is, as in the
+        paper's Algorithm 1.
+    radial_fractions, width_fractions : array_like or None
+        User stations ``r/R`` and widths ``dr/R`` (shape ``(nr,)`` or
+        ``(nn, nr)``), see :class:`~bild_mdo.bem.stations.StationsComp`;
+        ``None`` (default): midpoints of ``nr`` equal annuli from hub to tip.
+
+    Inputs
+    ------
+    v_axial[nn] (m/s) or advance_ratio[nn] (-)
+        Operating condition (see ``input_mode``); ``v_axial >= 0``, 0 is hover.
+    rpm[nn] (rpm)
+        Rotor speed.
+    radius[nn] (m)
+        Tip radius.
+    hub_radius_ratio[nn] (-), ref_radius_ratio[nn] (-)
+        Hub and reference radii over the tip radius, ``0 < hub < ref < 1``.
+    ref_chord[nn] (m)
+        Chord at the reference station.
+    altitude[nn] (m)
+        Geometric altitude for the ISA atmosphere.
+
+    Outputs
+    -------
+    chord[nn, nr] (m), chord_raw[nn, nr] (m), twist[nn, nr] (rad)
+        Blade geometry (after / before the root-chord correction).
+    radii[nn, nr] (m), dr[nn, nr] (m)
+        Stations.
+    phi, inflow_velocity, u_x, u_theta, eta2, loss_factor, dthrust_dr, dtorque_dr,
+    denergy_loss_dr, lift_coefficient, drag_coefficient : [nn, nr]
+        Distributions of the ideal rotor.
+    thrust, torque, power, efficiency, figure_of_merit, thrust_coefficient,
+    torque_coefficient, power_coefficient, energy_loss, solidity, blade_loading : [nn]
+        Performance (Table 2).
+    alpha_star, cl_star, cd_star, reynolds_ref, phi_ref, u_x_ref, u_theta_ref,
+    ideal_loading_constant, v_axial (advance-ratio mode), rho, mu : [nn]
+        Intermediate per-design quantities.
+    """
+
+    def initialize(self):
+        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
+        self.options.declare("num_radial", types=int, default=20, desc="number of radial stations")
+        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
+        self.options.declare("polar", default=None, allow_none=True, recordable=False, check_valid=_check_polar,
+                             desc="airfoil Polar; None selects the built-in NACA 4412")
+        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
+                             desc="Prandtl losses: 'tip_hub', 'tip' or 'none'")
+        self.options.declare("chord_form", default="thrust", values=CHORD_FORMS,
+                             desc="chord from the thrust (Eq. (31)) or the torque (Eq. (6)) balance")
+        self.options.declare("root_chord_correction", default=None, allow_none=True,
+                             check_valid=_check_correction,
+                             desc="k of the root-chord correction Eq. (32) on r/R; None for no correction")
+        self.options.declare("input_mode", default="v_axial", values=INPUT_MODES,
+                             desc="operating-condition input: 'v_axial' (m/s) or 'advance_ratio' J")
+        self.options.declare("radial_fractions", default=None, allow_none=True,
+                             desc="user station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
+        self.options.declare("width_fractions", default=None, allow_none=True,
+                             desc="user station widths dr/R (with radial_fractions)")
+
+    def setup(self):
+        opts = self.options
+        nn, nr, b = opts["num_nodes"], opts["num_radial"], opts["num_blades"]
+        size = dict(num_nodes=nn, num_radial=nr)
+        polar = default_polar() if opts["polar"] is None else opts["polar"]
+        loss = dict(num_blades=b, loss_model=opts["loss_model"])
+
+        self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
+                           promotes_outputs=["rho", "mu"])
+        if opts["input_mode"] == "advance_ratio":
+            self.add_subsystem("advance_ratio", AdvanceRatioComp(**size),
+                               promotes_inputs=["advance_ratio", "rpm", "radius"], promotes_outputs=["v_axial"])
+        self.add_subsystem("geometry", GeometryComp(**size),
+                           promotes_inputs=["radius", "hub_radius_ratio", "ref_radius_ratio"],
+                           promotes_outputs=["hub_radius", "ref_radius"])
+        self.add_subsystem("stations", StationsComp(**size, radial_fractions=opts["radial_fractions"],
+                                                    width_fractions=opts["width_fractions"]),
+                           promotes_inputs=["radius", "hub_radius"], promotes_outputs=["radii", "dr"])
+        self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
+                           promotes_inputs=["rpm", "radii", "ref_radius"],
+                           promotes_outputs=["v_theta", "v_theta_ref"])
+        self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**size, polar=polar),
+                           promotes_inputs=["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"],
+                           promotes_outputs=["reynolds_ref", "alpha_star", "cl_star", "cd_star"])
+        self.add_subsystem("reference_station", ReferenceStationComp(**size, **loss),
+                           promotes_inputs=list(SECTION_INPUTS), promotes_outputs=["phi_ref"])
+        self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**size, **loss),
+                           promotes_inputs=["phi_ref"] + list(SECTION_INPUTS),
+                           promotes_outputs=["u_x_ref", "u_theta_ref"])
+        self.add_subsystem("ideal_loading", IdealLoadingComp(**size),
+                           promotes_inputs=["u_x_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
+                           promotes_outputs=["ideal_loading_constant"])
+        self.add_subsystem("eta2", Eta2Comp(**size),
+                           promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
+                           promotes_outputs=["eta2"])
+        self.add_subsystem("induced_velocity", InducedVelocityComp(**size),
+                           promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
+                           promotes_outputs=["u_x", "u_theta"])
+        self.add_subsystem("inflow_angle", InflowAngleComp(**size),
+                           promotes_inputs=["u_x", "u_theta", "v_theta", "alpha_star"],
+                           promotes_outputs=["phi", "inflow_velocity", "twist"])
+        self.add_subsystem("sectional_loads", SectionalLoadsComp(**size, **loss),
+                           promotes_inputs=["u_x", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
+                                            "hub_radius"],
+                           promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+        chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
+        self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"]),
+                           promotes_inputs=chord_load + ["phi", "inflow_velocity", "rho", "cl_star", "cd_star"],
+                           promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
+        self.add_subsystem("root_chord_correction",
+                           RootChordCorrectionComp(**size, correction_constant=opts["root_chord_correction"]),
+                           promotes_inputs=["chord_raw", "ref_chord", "radii", "radius"],
+                           promotes_outputs=["chord"])
+        self.add_subsystem("performance", RotorPerformanceComp(**size, num_blades=b),
+                           promotes_inputs=["dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm",
+                                            "radius", "rho"],
+                           promotes_outputs=list(PERFORMANCE_OUTPUTS))
+
+        if opts["input_mode"] == "advance_ratio":
+            self.set_input_defaults("advance_ratio", val=np.zeros(nn), units=None)
+        else:
+            self.set_input_defaults("v_axial", val=np.zeros(nn), units="m/s")
+        self.set_input_defaults("rpm", val=np.full(nn, 800.0), units="rpm")
+        self.set_input_defaults("radius", val=np.full(nn, 1.5), units="m")
+        self.set_input_defaults("hub_radius_ratio", val=np.full(nn, 0.2), units=None)
+        self.set_input_defaults("ref_radius_ratio", val=np.full(nn, 0.5), units=None)
+        self.set_input_defaults("ref_chord", val=np.full(nn, 0.15), units="m")
+        self.set_input_defaults("altitude", val=np.zeros(nn), units="m")

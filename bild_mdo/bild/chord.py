@@ -1,0 +1,155 @@
+"""Back-computed chord of the ideal blade (Eq. (31), or its torque counterpart from Eq. (6))."""
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
+
+CHORD_FORMS = ("thrust", "torque")
+
+
+class ChordComp(om.ExplicitComponent):
+    """Chord that makes the blade element carry the ideal sectional load.
+
+    Thrust form (default, Eq. (31))::
+
+        c = 2 dT/dr / (C_x rho W**2 B),           C_x = C_l* cos(phi) - C_d* sin(phi)
+
+    Torque form (Eq. (6) solved for c)::
+
+        c = 2 dQ/dr / (C_theta rho W**2 B r),     C_theta = C_l* sin(phi) + C_d* cos(phi)
+
+    Both forms give the same chord when the induced velocities satisfy
+    Eq. (25), which Eq. (26) guarantees; the option exists to check that and
+    to choose the better-conditioned one.  An unloaded station (zero load)
+    gets zero chord: ``C_x`` and ``C_theta`` stay positive for
+    ``0 <= phi < atan(C_l/C_d)``, so no division by zero occurs.
+
+    The section's lift and drag coefficients (the constant ``C_l*``, ``C_d*``
+    of Assumption 2) are also given as distributions for plotting.
+
+    Options
+    -------
+    num_nodes : int
+        Number of designs / operating points.
+    num_radial : int
+        Number of radial stations.
+    num_blades : int
+        Number of blades B.
+    chord_form : str
+        ``'thrust'`` (Eq. (31), default) or ``'torque'``.
+
+    Inputs
+    ------
+    dthrust_dr[nn, nr] (N/m)
+        dT/dr (thrust form only).
+    dtorque_dr[nn, nr] (N*m/m)
+        dQ/dr (torque form only).
+    radii[nn, nr] (m)
+        Station radii (torque form only).
+    phi[nn, nr] (rad)
+        Inflow angle.
+    inflow_velocity[nn, nr] (m/s)
+        Resultant inflow speed W.
+    rho[nn] (kg/m**3)
+        Air density.
+    cl_star[nn] (-), cd_star[nn] (-)
+        Lift and drag coefficients at the maximum lift-to-drag ratio.
+
+    Outputs
+    -------
+    chord_raw[nn, nr] (m)
+        Back-computed chord, before any root-chord correction.
+    lift_coefficient[nn, nr] (-), drag_coefficient[nn, nr] (-)
+        Section coefficients (``C_l*``, ``C_d*`` at every station).
+    """
+
+    def initialize(self):
+        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
+        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
+        self.options.declare("chord_form", default="thrust", values=CHORD_FORMS,
+                             desc="'thrust': Eq. (31) from dT/dr; 'torque': Eq. (6) from dQ/dr")
+
+    def setup(self):
+        nn = self.options["num_nodes"]
+        nr = self.options["num_radial"]
+        if self.options["chord_form"] == "thrust":
+            self.add_input("dthrust_dr", val=np.ones((nn, nr)), units="N/m",
+                           desc="sectional thrust dT/dr")
+        else:
+            self.add_input("dtorque_dr", val=np.ones((nn, nr)), units="N*m/m",
+                           desc="sectional torque dQ/dr")
+            self.add_input("radii", val=np.ones((nn, nr)), units="m", desc="radii of the blade stations")
+        self.add_input("phi", val=np.full((nn, nr), 0.1), units="rad", desc="inflow angle")
+        self.add_input("inflow_velocity", val=np.full((nn, nr), 50.0), units="m/s",
+                       desc="resultant inflow speed W")
+        self.add_input("rho", val=np.full(nn, 1.225), units="kg/m**3", desc="air density")
+        self.add_input("cl_star", val=np.ones(nn), units=None,
+                       desc="lift coefficient at the maximum lift-to-drag ratio")
+        self.add_input("cd_star", val=np.full(nn, 0.01), units=None,
+                       desc="drag coefficient at the maximum lift-to-drag ratio")
+        self.add_output("chord_raw", val=np.full((nn, nr), 0.1), units="m",
+                        desc="back-computed chord before the root-chord correction, Eq. (31)")
+        self.add_output("lift_coefficient", val=np.ones((nn, nr)), units=None,
+                        desc="section lift coefficient (C_l* at every station)")
+        self.add_output("drag_coefficient", val=np.full((nn, nr), 0.01), units=None,
+                        desc="section drag coefficient (C_d* at every station)")
+
+    def setup_partials(self):
+        nn = self.options["num_nodes"]
+        nr = self.options["num_radial"]
+        rows, cols = dist_wrt_dist(nn, nr)
+        load = "dthrust_dr" if self.options["chord_form"] == "thrust" else "dtorque_dr"
+        wrt = [load, "phi", "inflow_velocity"]
+        if self.options["chord_form"] == "torque":
+            wrt.append("radii")
+        self.declare_partials("chord_raw", wrt, rows=rows, cols=cols)
+        rows, cols = dist_wrt_node(nn, nr)
+        self.declare_partials("chord_raw", ["rho", "cl_star", "cd_star"], rows=rows, cols=cols)
+        self.declare_partials("lift_coefficient", "cl_star", rows=rows, cols=cols, val=1.0)
+        self.declare_partials("drag_coefficient", "cd_star", rows=rows, cols=cols, val=1.0)
+
+    def _parts(self, inputs):
+        """Return load, force coefficient, its phi derivative, its cl and cd derivatives, denominator."""
+        b = self.options["num_blades"]
+        phi = inputs["phi"]
+        cl = inputs["cl_star"][:, None]
+        cd = inputs["cd_star"][:, None]
+        sin, cos = np.sin(phi), np.cos(phi)
+        scale = inputs["rho"][:, None] * inputs["inflow_velocity"] ** 2 * b
+        if self.options["chord_form"] == "thrust":
+            load = inputs["dthrust_dr"]
+            coef = cl * cos - cd * sin
+            dcoef_dphi = -cl * sin - cd * cos
+            dcoef_dcl, dcoef_dcd = cos, -sin
+        else:
+            load = inputs["dtorque_dr"]
+            coef = cl * sin + cd * cos
+            dcoef_dphi = cl * cos - cd * sin
+            dcoef_dcl, dcoef_dcd = sin, cos
+            scale = scale * inputs["radii"]
+        if np.any(np.real(coef) <= 0.0):
+            raise om.AnalysisError(
+                f"{self.msginfo}: the blade-element force coefficient is not positive (inflow angle "
+                "beyond atan(C_l/C_d)); the chord cannot be back-computed")
+        return load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale
+
+    def compute(self, inputs, outputs):
+        nr = self.options["num_radial"]
+        load, coef, _, _, _, scale = self._parts(inputs)
+        outputs["chord_raw"] = 2.0 * load / (coef * scale)
+        outputs["lift_coefficient"] = np.repeat(inputs["cl_star"][:, None], nr, axis=1)
+        outputs["drag_coefficient"] = np.repeat(inputs["cd_star"][:, None], nr, axis=1)
+
+    def compute_partials(self, inputs, partials):
+        load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale = self._parts(inputs)
+        chord = 2.0 * load / (coef * scale)
+        name = "dthrust_dr" if self.options["chord_form"] == "thrust" else "dtorque_dr"
+        partials["chord_raw", name] = (2.0 / (coef * scale)).ravel()
+        partials["chord_raw", "phi"] = (-chord * dcoef_dphi / coef).ravel()
+        partials["chord_raw", "inflow_velocity"] = (-2.0 * chord / inputs["inflow_velocity"]).ravel()
+        partials["chord_raw", "rho"] = (-chord / inputs["rho"][:, None]).ravel()
+        partials["chord_raw", "cl_star"] = (-chord * dcoef_dcl / coef).ravel()
+        partials["chord_raw", "cd_star"] = (-chord * dcoef_dcd / coef).ravel()
+        if self.options["chord_form"] == "torque":
+            partials["chord_raw", "radii"] = (-chord / inputs["radii"]).ravel()

@@ -1,0 +1,324 @@
+"""Annular efficiency eta2 of the ideally loaded rotor: the root of the BILD quartic (Eq. (27))."""
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.bild.quartic_coefficients import (
+    physical_factor_term_partials,
+    physical_factor_terms,
+    quartic,
+    quartic_partials,
+)
+from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
+
+_EPS = np.finfo(float).eps
+_MAX_ITERATIONS = 200
+
+
+def _bracket_function(eta, v_axial, v_theta, lam, drag_to_lift, hover):
+    """The function bracketed on [0.5, 1], its eta derivative and its rounding scale.
+
+    Away from hover it is the quartic ``P = N**2 - 2 b N M - c M**2`` itself.
+    ``P = h k`` where ``h`` is the physical factor and ``k = N - u- M > 0`` on
+    [0.5, 1], so ``P`` and ``h`` have the same sign there and the same roots,
+    but ``P`` is a polynomial while ``h`` contains ``sqrt(b**2 + c)``, which
+    has a boundary layer of width ~``s**2`` at ``eta = 1`` near hover that
+    slows Newton down.  ``P(0.5) > 0`` and ``P(1) = -lam V_x (...) < 0``.
+
+    In hover ``P`` has the exact factor ``1 - eta`` (Eq. (35)): with
+    ``N = V_theta**2 (1 - eta)(4 eta - 1)``, ``c = eta (1 - eta) V_theta**2``
+    and ``b = -s V_theta / 2``, the bracketed function is the cubic::
+
+        C = P / (1 - eta) = V_theta**2 [V_theta**2 (1 - eta)(4 eta - 1)**2
+                                        + s V_theta (4 eta - 1) M - eta M**2],
+
+        C(1) = 2 V_theta**2 (lam + s V_theta)(s V_theta - 2 lam).
+
+    Returns ``(f, df/deta, scale)``; ``eps * scale`` bounds the rounding error
+    of ``f``.
+    """
+    n_term, m_term, b, c = physical_factor_terms(eta, v_axial, v_theta, lam, drag_to_lift)
+    dn, dm, _, dc = physical_factor_term_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt=("eta",))["eta"]
+    f = n_term * (n_term - 2.0 * b * m_term) - c * m_term * m_term
+    df = 2.0 * (n_term - b * m_term) * dn - 2.0 * (b * n_term + c * m_term) * dm - m_term * m_term * dc
+    scale = n_term * n_term + np.abs(2.0 * b * n_term * m_term) + np.abs(c) * m_term * m_term
+    if np.any(hover):
+        v2 = v_theta * v_theta
+        sv = drag_to_lift * v_theta
+        one_minus = 1.0 - eta
+        q = 4.0 * eta - 1.0
+        terms = (v2 * one_minus * q * q, sv * q * m_term, eta * m_term * m_term)
+        cubic = v2 * (terms[0] + terms[1] - terms[2])
+        dcubic = v2 * (v2 * q * (8.0 * one_minus - q) + sv * (4.0 * m_term + q * dm)
+                       - m_term * (m_term + 2.0 * eta * dm))
+        f = np.where(hover, cubic, f)
+        df = np.where(hover, dcubic, df)
+        scale = np.where(hover, v2 * (np.abs(terms[0]) + np.abs(terms[1]) + np.abs(terms[2])), scale)
+    return f, df, scale
+
+
+def _describe(index, names=None):
+    if names is None:
+        return f"index {tuple(int(i) for i in index)}"
+    return ", ".join(f"{name} {int(i)}" for name, i in zip(names, index))
+
+
+def _validate(v_axial, v_theta, lam, cl, cd, index_names):
+    checks = (
+        (v_axial, lambda x: x >= 0.0, "v_axial", "must be >= 0 (axial inflow; BILD assumes 0 <= V_x, Assumption 3)"),
+        (v_theta, lambda x: x > 0.0, "v_theta", "must be > 0 (blade speed Omega*r at a station off the axis)"),
+        (lam, lambda x: x > 0.0, "ideal-loading constant lambda",
+         "must be > 0 (Appendix 7.1; check the reference-station induced velocities)"),
+        (cl, lambda x: x > 0.0, "cl_star", "must be > 0 (lift coefficient at maximum L/D)"),
+        (cd, lambda x: x > 0.0, "cd_star", "must be > 0 (drag coefficient at maximum L/D)"),
+    )
+    for values, ok, name, rule in checks:
+        bad = ~(np.isfinite(values) & ok(values))
+        if np.any(bad):
+            index = np.argwhere(bad)[0]
+            value = float(values[tuple(index)])
+            raise ValueError(f"eta2 solve: {name} = {value!r} at {_describe(index, index_names)}: {rule}.")
+
+
+def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
+    """Vectorised safeguarded Newton solve on 1-D arrays; returns ``(eta2, converged)``."""
+    n = v_axial.size
+    hover = v_axial * lam == 0.0
+    lo = np.full(n, 0.5)
+    hi = np.ones(n)
+    eta = np.ones(n)
+    f_lo, _, _ = _bracket_function(lo, v_axial, v_theta, lam, drag_to_lift, hover)
+    # Exact values at eta = 1 (hand derivations, asserted in derive_quartic.derive): P(1) away from hover, C(1) in it.
+    sv = drag_to_lift * v_theta
+    f_hi = np.where(hover, 2.0 * v_theta**2 * (lam + sv) * (sv - 2.0 * lam),
+                    -lam * v_axial * (v_axial + 2.0 * sv) * (lam + v_axial + sv))
+    unloaded = hover & ~(f_hi < 0.0)
+    # P(0.5) > 0 analytically; a station without a bracket is reported, never guessed.
+    has_bracket = f_lo > 0.0
+    converged = unloaded.copy()
+    active = np.flatnonzero(~unloaded & has_bracket)
+    x = lo[active] + f_lo[active] * 0.5 / (f_lo[active] - f_hi[active])
+    x = np.clip(x, 0.5 + 1e-3, 1.0 - 1e-12)
+    step_before = np.full(active.size, 0.5)
+    for _ in range(_MAX_ITERATIONS):
+        if active.size == 0:
+            break
+        vx, vt, lm, s, hv = v_axial[active], v_theta[active], lam[active], drag_to_lift[active], hover[active]
+        f, df, f_scale = _bracket_function(x, vx, vt, lm, s, hv)
+        lo_a = np.where(f > 0.0, x, lo[active])
+        hi_a = np.where(f < 0.0, x, hi[active])
+        lo[active], hi[active] = lo_a, hi_a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            newton_step = f / df
+        newton = x - newton_step
+        use_newton = (newton >= lo_a) & (newton <= hi_a) & (np.abs(newton_step) <= 0.5 * step_before)
+        x_new = np.where(use_newton, newton, 0.5 * (lo_a + hi_a))
+        step = np.abs(x_new - x)
+        # Stop when f is zero to round-off (a further "Newton" step would only follow noise), when the
+        # Newton correction is below round-off, or when the bracket has shrunk to round-off.
+        at_root = np.abs(f) <= 4.0 * _EPS * f_scale
+        done = (at_root | (use_newton & (step <= 2.0 * _EPS * x_new))
+                | (hi_a - lo_a <= 4.0 * _EPS * hi_a))
+        x_new = np.where(at_root, x, x_new)
+        eta[active[done]] = x_new[done]
+        converged[active[done]] = True
+        keep = ~done
+        active, x = active[keep], x_new[keep]
+        step_before = step[keep]
+    return eta, converged
+
+
+def solve_eta2(v_axial, v_theta, lam, cl, cd, index_names=None):
+    """Solve the BILD quartic (Eq. (27)) for the physical annular efficiency eta2.
+
+    Each element is the unique root in (0.5, 1) of the quartic ``P`` (and of
+    its physical factor ``h``: ``P = h k`` with ``k > 0`` on [0.5, 1]), so it
+    satisfies Eq. (22) with ``u_x`` from Eq. (26) and ``u_theta`` from
+    Eq. (24).  The solve is a vectorised safeguarded Newton iteration (Newton
+    steps kept inside a shrinking bracket, bisection otherwise) on [0.5, 1],
+    converged to round-off; see :func:`_bracket_function` for the function
+    it brackets.  The root is unique and the other real root of ``h`` near
+    hover lies above 1, so it is never returned, however close it is.
+
+    Hover (``V_x == 0``): the station carries load only if
+    ``lam > V_theta C_d / (2 C_l)``; otherwise there is no root in (0.5, 1)
+    and the station is unloaded: eta2 = 1 (``u_x = u_theta = 0``), the limit
+    of the root as ``V_x -> 0+``.
+
+    Parameters
+    ----------
+    v_axial : array_like
+        Axial free-stream velocity V_x (m/s), >= 0.
+    v_theta : array_like
+        Blade speed ``Omega r`` (m/s), > 0.
+    lam : array_like
+        Ideal-loading constant of Eq. (22) (m/s), > 0.
+    cl, cd : array_like
+        Lift and drag coefficients at the maximum lift-to-drag ratio, > 0.
+    index_names : sequence of str, optional
+        Names of the broadcast axes, used in error messages (e.g.
+        ``("node", "station")``).
+
+    Returns
+    -------
+    numpy.ndarray
+        eta2 with the broadcast shape of the inputs, in (0.5, 1].
+
+    Raises
+    ------
+    ValueError
+        If an input is outside the valid domain or (not expected in the
+        valid domain) the solve fails; the message names the element.
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (v_axial, v_theta, lam, cl, cd)))
+    _validate(*arrays, index_names)
+    flat = [a.ravel() for a in arrays]
+    eta, converged = _solve_flat(flat[0], flat[1], flat[2], flat[4] / flat[3])
+    if not np.all(converged):
+        index = np.unravel_index(np.flatnonzero(~converged)[0], arrays[0].shape)
+        at = ", ".join(f"{label}={float(a[index])!r}" for label, a in zip(("V_x", "V_theta", "lambda", "C_l", "C_d"),
+                                                                           arrays))
+        raise ValueError(f"eta2 solve did not converge at {_describe(index, index_names)} ({at}); "
+                         "please report this case.")
+    return eta.reshape(arrays[0].shape)
+
+
+class Eta2Comp(om.ImplicitComponent):
+    """Annular efficiency eta2 at every station: the physical root of the quartic of Eq. (27).
+
+    Residual (dimensionless)::
+
+        R = P(eta2; V_x, V_theta, lam, s) / (V_theta**2 + V_x**2 + lam**2)**2,   s = C_d*/C_l*,
+
+    where ``P`` (in (m/s)**4) is the quartic derived in
+    :mod:`bild_mdo.bild.derive_quartic` from Eqs. (22), (24), (26) (the
+    paper's printed Eq. (34) is misprinted; see
+    :mod:`bild_mdo.bild.quartic_coefficients`).  The positive per-point scale
+    has the units of ``P`` and makes ``R`` O(1) at hub and tip alike; it is
+    included in the partials.
+
+    ``solve_nonlinear`` finds the unique root in (0.5, 1) by a vectorised,
+    bracketed, safeguarded Newton solve (:func:`solve_eta2`).  In hover
+    (``V_x == 0``) a station is loaded only if ``lam > V_theta C_d/(2 C_l)``;
+    otherwise it is unloaded and ``eta2 = 1`` (``u_x = u_theta = 0``), the
+    limit of the root as ``V_x -> 0+``, which is still a simple root of ``P``,
+    so the linearization stays finite and consistent there.  Under complex
+    step one Newton update in complex arithmetic on ``P`` carries the exact
+    derivative in the imaginary part.
+
+    Options
+    -------
+    num_nodes : int
+        Number of designs / operating points.
+    num_radial : int
+        Number of radial stations.
+
+    Inputs
+    ------
+    v_axial[nn] (m/s)
+        Axial free-stream velocity, >= 0.
+    v_theta[nn, nr] (m/s)
+        Rotational blade speed ``Omega r`` at the stations, > 0.
+    ideal_loading_constant[nn] (m/s)
+        Ideal-loading constant lambda of Eq. (22), > 0.
+    cl_star[nn] (-), cd_star[nn] (-)
+        Lift and drag coefficients at the maximum lift-to-drag ratio, > 0.
+
+    Outputs
+    -------
+    eta2[nn, nr] (-)
+        Annular efficiency for tangential induced losses, Eq. (23), in (0.5, 1].
+    """
+
+    def initialize(self):
+        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
+        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+
+    def setup(self):
+        nn = self.options["num_nodes"]
+        nr = self.options["num_radial"]
+        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
+        self.add_input("v_theta", val=np.full((nn, nr), 50.0), units="m/s",
+                       desc="rotational blade speed Omega*r at the stations")
+        self.add_input("ideal_loading_constant", val=np.full(nn, 10.0), units="m/s",
+                       desc="ideal-loading constant lambda, Eq. (22)")
+        self.add_input("cl_star", val=np.ones(nn), units=None,
+                       desc="lift coefficient at the maximum lift-to-drag ratio")
+        self.add_input("cd_star", val=np.full(nn, 0.01), units=None,
+                       desc="drag coefficient at the maximum lift-to-drag ratio")
+        self.add_output("eta2", val=np.full((nn, nr), 0.9), units=None,
+                        desc="annular efficiency for tangential induced losses, Eq. (23)")
+
+    def setup_partials(self):
+        nn = self.options["num_nodes"]
+        nr = self.options["num_radial"]
+        rows, cols = dist_wrt_dist(nn, nr)
+        self.declare_partials("eta2", ["eta2", "v_theta"], rows=rows, cols=cols)
+        rows, cols = dist_wrt_node(nn, nr)
+        self.declare_partials("eta2", ["v_axial", "ideal_loading_constant", "cl_star", "cd_star"],
+                              rows=rows, cols=cols)
+
+    @staticmethod
+    def _arguments(inputs):
+        """``(V_x, V_theta, lam, s)`` broadcast to ``(nn, nr)``-compatible shapes."""
+        v_x = inputs["v_axial"][:, None]
+        lam = inputs["ideal_loading_constant"][:, None]
+        s = (inputs["cd_star"] / inputs["cl_star"])[:, None]
+        return v_x, inputs["v_theta"], lam, s
+
+    @staticmethod
+    def _scale(v_x, v_t, lam):
+        return (v_t * v_t + v_x * v_x + lam * lam) ** 2
+
+    def apply_nonlinear(self, inputs, outputs, residuals):
+        v_x, v_t, lam, s = self._arguments(inputs)
+        residuals["eta2"] = quartic(outputs["eta2"], v_x, v_t, lam, s) / self._scale(v_x, v_t, lam)
+
+    def solve_nonlinear(self, inputs, outputs):
+        real = {name: np.real(inputs[name]) for name in
+                ("v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star")}
+        try:
+            eta = solve_eta2(real["v_axial"][:, None], real["v_theta"], real["ideal_loading_constant"][:, None],
+                             real["cl_star"][:, None], real["cd_star"][:, None], index_names=("node", "station"))
+        except ValueError as err:
+            raise om.AnalysisError(f"{self.msginfo}: {err}") from err
+        if self.under_complex_step:
+            # eta = eta_real - P(eta_real; complex inputs) / P'(eta_real; real inputs): only the imaginary part
+            # of the update is kept, so the real solution stays bit-identical to the real solve.
+            v_x, v_t, lam, s = self._arguments(inputs)
+            residual = quartic(eta, v_x, v_t, lam, s)
+            slope = quartic_partials(eta, *self._arguments(real), wrt=("eta",))["eta"]
+            eta = eta - 1j * np.imag(residual) / slope
+        outputs["eta2"] = eta
+
+    def linearize(self, inputs, outputs, partials):
+        v_x, v_t, lam, s = self._arguments(inputs)
+        eta = outputs["eta2"]
+        scale = self._scale(v_x, v_t, lam)
+        residual = quartic(eta, v_x, v_t, lam, s) / scale
+        dp = quartic_partials(eta, v_x, v_t, lam, s)
+        # d(P/S) = (dP - R dS)/S with dS = 4 sqrt(S) x dx for x in (V_x, V_theta, lam).
+        root_scale = np.sqrt(scale)
+        d_vx = (dp["v_axial"] - residual * 4.0 * root_scale * v_x) / scale
+        d_vt = (dp["v_theta"] - residual * 4.0 * root_scale * v_t) / scale
+        d_lam = (dp["lam"] - residual * 4.0 * root_scale * lam) / scale
+        d_s = dp["drag_to_lift"] / scale
+        cl = inputs["cl_star"][:, None]
+        d_eta = dp["eta"] / scale
+        if not np.all(np.isfinite(d_eta) & (d_eta != 0.0)):
+            index = np.argwhere(~(np.isfinite(d_eta) & (d_eta != 0.0)))[0]
+            raise om.AnalysisError(
+                f"{self.msginfo}: dP/deta2 is singular at node {index[0]}, station {index[1]} (a hover station "
+                f"exactly at the loading threshold lambda = V_theta C_d/(2 C_l), where eta2 is not differentiable).")
+        self._d_eta = d_eta
+        partials["eta2", "eta2"] = d_eta.ravel()
+        partials["eta2", "v_theta"] = d_vt.ravel()
+        partials["eta2", "v_axial"] = d_vx.ravel()
+        partials["eta2", "ideal_loading_constant"] = d_lam.ravel()
+        partials["eta2", "cl_star"] = (d_s * (-s / cl)).ravel()
+        partials["eta2", "cd_star"] = (d_s / cl).ravel()
+
+    def solve_linear(self, d_outputs, d_residuals, mode):
+        if mode == "fwd":
+            d_outputs["eta2"] = d_residuals["eta2"] / self._d_eta
+        else:
+            d_residuals["eta2"] = d_outputs["eta2"] / self._d_eta

@@ -1,0 +1,213 @@
+"""The one BEM solve of BILD: inflow angle at the reference station (Algorithm 1, step 2)."""
+from typing import NamedTuple
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.bem.inflow_residual import inflow_residual, inflow_residual_value
+from bild_mdo.bem.prandtl import LOSS_MODELS, prandtl_loss
+from bild_mdo.bem.root_finding import complex_newton_update, solve_bracketed
+from bild_mdo.utils.sparsity import node_wrt_node
+
+#: Inputs of the reference-station section, shared by the solve and the induced velocities.
+SECTION_INPUTS = ("v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius",
+                  "cl_star", "cd_star")
+
+
+class ReferenceSection(NamedTuple):
+    """Solidity and loss factor of the reference section, with the partials the chain rule needs."""
+
+    sigma: np.ndarray
+    dsigma_dref_chord: np.ndarray
+    dsigma_dref_radius: np.ndarray
+    loss: object
+
+
+def reference_section(phi, inputs, num_blades, loss_model):
+    """Local solidity ``sigma = B c_ref / (2 pi r_ref)`` and Prandtl loss at the reference station.
+
+    Parameters
+    ----------
+    phi : ndarray
+        Inflow angle at the reference station (rad), shape ``(nn,)``.
+    inputs : mapping
+        Values of :data:`SECTION_INPUTS`, shape ``(nn,)`` each.
+    num_blades : int
+        Number of blades B.
+    loss_model : str
+        Prandtl loss model, see :func:`bild_mdo.bem.prandtl.prandtl_loss`.
+
+    Returns
+    -------
+    ReferenceSection
+    """
+    r_ref = inputs["ref_radius"]
+    sigma = num_blades * inputs["ref_chord"] / (2.0 * np.pi * r_ref)
+    loss = prandtl_loss(phi, r_ref, inputs["radius"], inputs["hub_radius"], num_blades, loss_model)
+    return ReferenceSection(sigma, num_blades / (2.0 * np.pi * r_ref), -sigma / r_ref, loss)
+
+
+def add_section_inputs(comp, nn):
+    """Declare :data:`SECTION_INPUTS` on ``comp`` (used by both reference-station components)."""
+    comp.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
+    comp.add_input("v_theta_ref", val=np.full(nn, 50.0), units="m/s",
+                   desc="rotational speed Omega*r_ref at the reference station")
+    comp.add_input("ref_radius", val=np.full(nn, 0.5), units="m", desc="radius of the reference station")
+    comp.add_input("ref_chord", val=np.full(nn, 0.1), units="m", desc="chord at the reference station")
+    comp.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius")
+    comp.add_input("hub_radius", val=np.full(nn, 0.2), units="m", desc="hub radius")
+    comp.add_input("cl_star", val=np.ones(nn), units=None,
+                   desc="lift coefficient at the maximum lift-to-drag ratio")
+    comp.add_input("cd_star", val=np.full(nn, 0.01), units=None,
+                   desc="drag coefficient at the maximum lift-to-drag ratio")
+
+
+def section_partials(d_dphi, d_dsigma, d_dF, d_dv_axial, d_dv_theta, d_dcl, d_dcd, section, loss_model):
+    """Chain explicit partials of a reference-station quantity to the component inputs and phi.
+
+    Returns
+    -------
+    dict
+        ``{'phi': ..., input name: ...}``; the loss-factor partials appear only
+        for the inputs the loss model depends on.
+    """
+    loss = section.loss
+    out = {
+        "phi": d_dphi + d_dF * loss.dF_dphi,
+        "v_axial": d_dv_axial,
+        "v_theta_ref": d_dv_theta,
+        "ref_chord": d_dsigma * section.dsigma_dref_chord,
+        "ref_radius": d_dsigma * section.dsigma_dref_radius + d_dF * loss.dF_dr,
+        "cl_star": d_dcl,
+        "cd_star": d_dcd,
+    }
+    if loss_model != "none":
+        out["radius"] = d_dF * loss.dF_dradius
+    if loss_model == "tip_hub":
+        out["hub_radius"] = d_dF * loss.dF_dhub_radius
+    return out
+
+
+def section_wrt(loss_model):
+    """The inputs a reference-station quantity depends on, for exact sparsity."""
+    wrt = ["v_axial", "v_theta_ref", "ref_chord", "ref_radius", "cl_star", "cd_star"]
+    if loss_model != "none":
+        wrt.append("radius")
+    if loss_model == "tip_hub":
+        wrt.append("hub_radius")
+    return wrt
+
+
+class ReferenceStationComp(om.ImplicitComponent):
+    """Inflow angle ``phi_ref`` of the reference station, the one BEM solve of BILD.
+
+    The blade element at ``r_ref`` has the prescribed chord ``c_ref`` and works
+    at the maximum-L/D point, so ``C_l = C_l*`` and ``C_d = C_d*`` are fixed
+    (not read from the polar at the solved angle of attack).  The state solves
+    the BEM residual, Eq. (9) generalised by Prandtl's loss factor::
+
+        R(phi) = (V_x/V_theta)(sigma C_theta + 4 F sin cos) + sigma C_x - 4 F sin**2 = 0
+
+    with ``sigma = B c_ref / (2 pi r_ref)``, ``C_x, C_theta`` from Eq. (7) and
+    ``F = F(phi, r_ref)``.  The solve reuses the package's bracketed BEM solver
+    (:func:`bild_mdo.bem.root_finding.solve_bracketed`); under complex step one
+    complex Newton update after the real solve carries the exact derivative.
+    The state Jacobian is diagonal, so ``solve_linear`` divides elementwise.
+
+    Options
+    -------
+    num_nodes : int
+        Number of designs / operating points.
+    num_radial : int
+        Number of radial stations (unused here).
+    num_blades : int
+        Number of blades B.
+    loss_model : str
+        ``'tip_hub'`` (default), ``'tip'`` or ``'none'``.
+
+    Inputs
+    ------
+    v_axial[nn] (m/s), v_theta_ref[nn] (m/s)
+        Axial free-stream velocity, ``Omega r_ref``.
+    ref_radius[nn] (m), ref_chord[nn] (m)
+        Reference station radius and chord.
+    radius[nn] (m), hub_radius[nn] (m)
+        Tip and hub radii (Prandtl loss factor).
+    cl_star[nn] (-), cd_star[nn] (-)
+        Lift and drag coefficients at the maximum lift-to-drag ratio.
+
+    Outputs
+    -------
+    phi_ref[nn] (rad)
+        Inflow angle at the reference station.
+    """
+
+    def initialize(self):
+        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
+        self.options.declare("num_radial", types=int, default=1, desc="number of radial stations (unused)")
+        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
+        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
+                             desc="Prandtl losses: 'tip_hub', 'tip' or 'none'")
+
+    def setup(self):
+        nn = self.options["num_nodes"]
+        add_section_inputs(self, nn)
+        self.add_output("phi_ref", val=np.full(nn, 0.1), units="rad",
+                        desc="inflow angle at the reference station")
+        self._dR_dphi = np.ones(nn)
+
+    def setup_partials(self):
+        rows, cols = node_wrt_node(self.options["num_nodes"])
+        self.declare_partials("phi_ref", ["phi_ref"] + section_wrt(self.options["loss_model"]),
+                              rows=rows, cols=cols)
+
+    def _residual(self, phi, inputs):
+        """Residual and all its partials (real part), at inflow angle ``phi``."""
+        b, model = self.options["num_blades"], self.options["loss_model"]
+        section = reference_section(phi, inputs, b, model)
+        res = inflow_residual(phi, inputs["v_axial"], inputs["v_theta_ref"], section.sigma,
+                              inputs["cl_star"], inputs["cd_star"], section.loss.F)
+        partials = section_partials(res.dR_dphi, res.dR_dsigma, res.dR_dF, res.dR_dv_axial,
+                                    res.dR_dv_theta, res.dR_dcl, res.dR_dcd, section, model)
+        return res.residual, partials
+
+    def _residual_value(self, phi, inputs):
+        b, model = self.options["num_blades"], self.options["loss_model"]
+        section = reference_section(phi, inputs, b, model)
+        return inflow_residual_value(phi, inputs["v_axial"], inputs["v_theta_ref"], section.sigma,
+                                     inputs["cl_star"], inputs["cd_star"], section.loss.F)
+
+    def apply_nonlinear(self, inputs, outputs, residuals):
+        residuals["phi_ref"] = self._residual_value(outputs["phi_ref"], inputs)
+
+    def solve_nonlinear(self, inputs, outputs):
+        nn = self.options["num_nodes"]
+        real = {name: np.real(inputs[name]) for name in SECTION_INPUTS}
+        if np.any(real["v_theta_ref"] <= 0.0):
+            raise om.AnalysisError(f"{self.msginfo}: the reference station needs a positive rotor speed")
+        if np.any(real["v_axial"] < 0.0):
+            raise om.AnalysisError(f"{self.msginfo}: BILD designs need v_axial >= 0 (Assumption 4)")
+
+        def residual(phi, idx):
+            sub = {name: value[idx] for name, value in real.items()}
+            value, partials = self._residual(phi, sub)
+            return value, partials["phi"]
+
+        phi = solve_bracketed(residual, nn, describe=lambda i: f"reference station of design/node {i}")
+        if np.iscomplexobj(outputs["phi_ref"]):
+            _, partials = self._residual(phi, real)
+            phi = complex_newton_update(phi, self._residual_value(phi, inputs), partials["phi"])
+        outputs["phi_ref"] = phi
+
+    def linearize(self, inputs, outputs, jacobian):
+        _, partials = self._residual(np.real(outputs["phi_ref"]),
+                                     {name: np.real(inputs[name]) for name in SECTION_INPUTS})
+        for name, value in partials.items():
+            jacobian["phi_ref", "phi_ref" if name == "phi" else name] = value
+        self._dR_dphi = partials["phi"]
+
+    def solve_linear(self, d_outputs, d_residuals, mode):
+        if mode == "fwd":
+            d_outputs["phi_ref"] = d_residuals["phi_ref"] / self._dR_dphi
+        else:
+            d_residuals["phi_ref"] = d_outputs["phi_ref"] / self._dR_dphi

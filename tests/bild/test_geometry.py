@@ -1,0 +1,28 @@
+import openmdao.api as om
+import pytest
+
+from bild_mdo.bild.geometry import GeometryComp
+from tests.bild.conftest import NN, NR, check_component, state
+
+
+def test_partials(kind):
+    check_component(GeometryComp(num_nodes=NN, num_radial=NR), state(kind))
+
+
+def test_values():
+    # Hand derivation: hub = 0.2 * 1.5 m, ref = 0.5 * 1.5 m.
+    prob = check_component(GeometryComp(num_nodes=1, num_radial=NR),
+                           dict(radius=[1.5], hub_radius_ratio=[0.2], ref_radius_ratio=[0.5]))
+    assert prob.get_val("hub_radius", units="m")[0] == pytest.approx(0.3, rel=1e-15)
+    assert prob.get_val("ref_radius", units="m")[0] == pytest.approx(0.75, rel=1e-15)
+
+
+@pytest.mark.parametrize("hub, ref", [(0.0, 0.5), (0.5, 0.5), (0.6, 0.5), (0.2, 1.0)])
+def test_invalid_ratios_raise(hub, ref):
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("geometry", GeometryComp(num_nodes=1), promotes=["*"])
+    prob.setup()
+    prob.set_val("hub_radius_ratio", hub)
+    prob.set_val("ref_radius_ratio", ref)
+    with pytest.raises(om.AnalysisError, match="0 < hub_radius_ratio < ref_radius_ratio < 1"):
+        prob.run_model()

@@ -1,0 +1,17 @@
+import numpy as np
+
+from bild_mdo.bild.inflow_angle import InflowAngleComp
+from tests.bild.conftest import NN, NR, check_component, state
+
+
+def test_partials_and_geometry(kind):
+    values = state(kind)
+    prob = check_component(InflowAngleComp(num_nodes=NN, num_radial=NR), values)
+    phi = prob.get_val("phi", units="rad")
+    w = prob.get_val("inflow_velocity", units="m/s")
+    v_t = values["v_theta"] - 0.5 * values["u_theta"]
+    # Fig. 1b: W sin(phi) = u_x, W cos(phi) = V_theta - u_theta/2 (Eqs. (7), (30)).
+    np.testing.assert_allclose(w * np.sin(phi), values["u_x"], rtol=1e-13)
+    np.testing.assert_allclose(w * np.cos(phi), v_t, rtol=1e-13)
+    # Sec. 4.3: theta = phi + alpha*.
+    np.testing.assert_allclose(prob.get_val("twist"), phi + values["alpha_star"][:, None], rtol=1e-14)

@@ -1,0 +1,44 @@
+import numpy as np
+import openmdao.api as om
+import pytest
+
+from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
+from tests.bild.conftest import NN, NR, check_component, state
+
+# cd0 scales as Re**-0.2 (turbulent skin friction), so the max-L/D point moves with Re.
+RE_DEPENDENT = AnalyticPolar(reynolds_exponent=0.2)
+
+
+def test_partials_reynolds_dependent_polar(kind):
+    check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), state(kind))
+
+
+def test_partials_builtin_naca4412(kind):
+    # Default polar (None): the NACA 4412 surrogate; Re_ref here is inside its table (4e5 ... 1.5e6).
+    prob = check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR), state(kind))
+    ratio = prob.get_val("cl_star") / prob.get_val("cd_star")
+    # A cambered airfoil at Re ~ 1e6 reaches L/D of order 100 at alpha* of a few degrees.
+    assert np.all((ratio > 60) & (ratio < 200))
+    assert np.all((np.degrees(prob.get_val("alpha_star")) > 2) & (np.degrees(prob.get_val("alpha_star")) < 10))
+
+
+def test_reynolds_number_and_closed_form(kind):
+    values = state(kind)
+    prob = check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+    # Re_ref = rho W0 c_ref / mu with W0 = sqrt(V_x**2 + (Omega r_ref)**2) (speed without induction).
+    w0 = np.hypot(values["v_axial"], values["v_theta_ref"])
+    reynolds = values["rho"] * w0 * values["ref_chord"] / values["mu"]
+    np.testing.assert_allclose(prob.get_val("reynolds_ref"), reynolds, rtol=1e-14)
+    # AnalyticPolar's closed form of the max-L/D point (k cl*^2 = k cl_cd_min^2 + cd0 f(Re)).
+    alpha, cl, cd = RE_DEPENDENT.max_lift_to_drag_closed_form(reynolds)
+    np.testing.assert_allclose(prob.get_val("alpha_star"), alpha, rtol=1e-10)
+    np.testing.assert_allclose(prob.get_val("cl_star"), cl, rtol=1e-10)
+    np.testing.assert_allclose(prob.get_val("cd_star"), cd, rtol=1e-10)
+
+
+def test_nonpositive_chord_raises():
+    values = state("hover")
+    values["ref_chord"] = np.array([0.1, 0.0, 0.1])
+    with pytest.raises(om.AnalysisError, match="ref_chord must be positive"):
+        check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
