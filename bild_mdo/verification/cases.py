@@ -1,0 +1,218 @@
+"""Full-factorial cases of the verification sweep (paper Sec. 5.1).
+
+The paper sweeps advance ratio J in [0, 3], rotor radius R in [0.5, 1.5] m,
+altitude in [0, 3000] m and reference chord c_ref in [0.08, 0.22] m with ten
+levels per axis (10,000 cases) at 800 rpm and r_ref / R = 0.5.  The number of
+blades, airfoil, number of stations and hub radius are not given in Sec. 5.1;
+the defaults below (B = 3, NACA 4412, 30 stations, hub at 0.2 R) are this
+library's choice and are part of the sweep fingerprint, so a results store can
+never mix cases of different settings.
+"""
+import dataclasses
+import hashlib
+import json
+from dataclasses import dataclass
+
+import numpy as np
+
+# Bumped whenever the mapping case_id -> inputs changes, so that old stores are
+# refused instead of being silently resumed with different cases.
+CASE_LAYOUT_VERSION = 1
+
+OPTIMIZERS = ("ipopt", "slsqp", "snopt")
+
+# Swept axes in case-id order: the first axis varies slowest.
+AXES = ("advance_ratio", "radius", "altitude", "reference_chord")
+
+
+@dataclass(frozen=True)
+class Case:
+    """One design point of the sweep.
+
+    Attributes
+    ----------
+    case_id : int
+        Stable index in ``[0, levels**4)``: ``((i_J * L + i_R) * L + i_h) * L + i_c``
+        with ``L`` levels and ``i_*`` the level index along each axis.
+    inputs : dict
+        Everything the BILD model and the BEM optimisation need, SI units:
+        ``advance_ratio`` (-), ``radius`` (m), ``altitude`` (m),
+        ``reference_chord`` (m), ``rpm`` (rpm), ``v_axial`` (m/s, = J n D),
+        ``reference_radius`` (m), ``hub_radius`` (m), ``num_blades`` (-),
+        ``num_radial`` (-), ``airfoil`` (name).
+    optimizer : str
+        Name of the NLP optimiser the reference optimisation should use
+        (``'ipopt'``, ``'slsqp'`` or ``'snopt'``).
+    """
+
+    case_id: int
+    inputs: dict
+    optimizer: str = "slsqp"
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """Definition of a verification sweep: levels per axis, ranges and fixed inputs.
+
+    Parameters
+    ----------
+    levels : int
+        Number of evenly spaced values per swept axis (>= 2); ``levels**4`` cases.
+        ``levels=10`` gives the paper's 10,000 cases.
+    advance_ratio_range : tuple of float
+        ``(min, max)`` advance ratio J = V_x / (n D) (-).
+    radius_range : tuple of float
+        ``(min, max)`` rotor tip radius R (m).
+    altitude_range : tuple of float
+        ``(min, max)`` altitude (m).
+    reference_chord_range : tuple of float
+        ``(min, max)`` chord at the reference radius (m).
+    rpm : float
+        Rotational speed (rpm).
+    reference_radius_fraction : float
+        Reference radius as a fraction of R (-).
+    hub_radius_fraction : float
+        Hub radius as a fraction of R (-).
+    num_blades : int
+        Number of blades B.
+    num_radial : int
+        Number of radial stations.
+    airfoil : str
+        Airfoil name understood by the BILD model and the optimisation.
+    optimizer : str
+        Optimiser used for the reference BEM optimisation; part of the
+        fingerprint so results of different optimisers are never mixed.
+    """
+
+    levels: int = 10
+    advance_ratio_range: tuple = (0.0, 3.0)
+    radius_range: tuple = (0.5, 1.5)
+    altitude_range: tuple = (0.0, 3000.0)
+    reference_chord_range: tuple = (0.08, 0.22)
+    rpm: float = 800.0
+    reference_radius_fraction: float = 0.5
+    hub_radius_fraction: float = 0.2
+    num_blades: int = 3
+    num_radial: int = 30
+    airfoil: str = "naca4412"
+    optimizer: str = "slsqp"
+
+    def __post_init__(self):
+        if isinstance(self.levels, bool) or not isinstance(self.levels, (int, np.integer)) or self.levels < 2:
+            raise ValueError(f"levels must be an integer >= 2 (each axis spans its range), got {self.levels!r}")
+        for name in AXES:
+            lo, hi = self._range(name)
+            if not (np.isfinite(lo) and np.isfinite(hi) and lo <= hi):
+                raise ValueError(f"{name}_range must be finite with min <= max, got {(lo, hi)!r}")
+        if self.radius_range[0] <= 0.0 or self.reference_chord_range[0] <= 0.0 or self.advance_ratio_range[0] < 0.0:
+            raise ValueError("radius and reference chord must be positive and the advance ratio non-negative")
+        if not self.rpm > 0.0:
+            raise ValueError(f"rpm must be positive, got {self.rpm!r}")
+        if not 0.0 <= self.hub_radius_fraction < self.reference_radius_fraction < 1.0:
+            raise ValueError(
+                "need 0 <= hub_radius_fraction < reference_radius_fraction < 1, got "
+                f"{self.hub_radius_fraction!r} and {self.reference_radius_fraction!r}"
+            )
+        if int(self.num_blades) < 1 or int(self.num_radial) < 2:
+            raise ValueError("num_blades must be >= 1 and num_radial >= 2")
+        if self.optimizer not in OPTIMIZERS:
+            raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {self.optimizer!r}")
+
+    def _range(self, axis):
+        lo, hi = getattr(self, f"{axis}_range")
+        return float(lo), float(hi)
+
+    @property
+    def num_cases(self):
+        """Number of cases, ``levels**4``."""
+        return int(self.levels) ** len(AXES)
+
+    def axis_values(self):
+        """Return the levels of each swept axis.
+
+        Returns
+        -------
+        dict of str to ndarray
+            ``{axis: values[levels]}``; the end points equal the range bounds exactly.
+        """
+        return {name: np.linspace(*self._range(name), int(self.levels)) for name in AXES}
+
+    def to_dict(self):
+        """Plain JSON-able dict of every field (ranges as lists)."""
+        out = {}
+        for field in dataclasses.fields(self):
+            value = getattr(self, field.name)
+            if isinstance(value, tuple):
+                value = [float(v) for v in value]
+            elif isinstance(value, (np.integer, int)) and not isinstance(value, bool):
+                value = int(value)
+            elif isinstance(value, (np.floating, float)):
+                value = float(value)
+            out[field.name] = value
+        return out
+
+    def fingerprint(self):
+        """Short hash identifying this sweep (fields and case layout).
+
+        Returns
+        -------
+        str
+            16 hex digits of the SHA-256 of the canonical JSON of the spec.
+        """
+        payload = {"case_layout": CASE_LAYOUT_VERSION, "spec": self.to_dict()}
+        text = json.dumps(payload, sort_keys=True, separators=(",", ":"))
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+    def case(self, case_id):
+        """Return the case with the given id.
+
+        Parameters
+        ----------
+        case_id : int
+            Index in ``[0, num_cases)``.
+
+        Returns
+        -------
+        Case
+        """
+        return self._build_case(case_id, self.axis_values())
+
+    def _build_case(self, case_id, values):
+        case_id = int(case_id)
+        if not 0 <= case_id < self.num_cases:
+            raise ValueError(f"case_id must be in [0, {self.num_cases}), got {case_id}")
+        levels = int(self.levels)
+        index = {}
+        rest = case_id
+        for name in reversed(AXES):
+            rest, index[name] = divmod(rest, levels)
+        point = {name: float(values[name][index[name]]) for name in AXES}
+        radius = point["radius"]
+        rev_per_second = float(self.rpm) / 60.0
+        inputs = dict(point)
+        inputs.update(
+            rpm=float(self.rpm),
+            v_axial=point["advance_ratio"] * rev_per_second * 2.0 * radius,  # J = V_x / (n D)
+            reference_radius=float(self.reference_radius_fraction) * radius,
+            hub_radius=float(self.hub_radius_fraction) * radius,
+            num_blades=int(self.num_blades),
+            num_radial=int(self.num_radial),
+            airfoil=str(self.airfoil),
+        )
+        return Case(case_id=case_id, inputs=inputs, optimizer=self.optimizer)
+
+    def cases(self, case_ids=None):
+        """Return cases in id order.
+
+        Parameters
+        ----------
+        case_ids : iterable of int, optional
+            Subset to build; all ``num_cases`` cases when omitted.
+
+        Returns
+        -------
+        list of Case
+        """
+        ids = range(self.num_cases) if case_ids is None else sorted(int(i) for i in case_ids)
+        values = self.axis_values()
+        return [self._build_case(i, values) for i in ids]

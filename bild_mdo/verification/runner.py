@@ -1,0 +1,360 @@
+"""Run the verification sweep: BILD for every case in one batch, then one optimisation per case.
+
+The science is plugged in through two functions:
+
+``bild_batch_fn(cases) -> list of dict``
+    Vectorised BILD for a list of :class:`~bild_mdo.verification.cases.Case`;
+    one dict per case with the keys of
+    :data:`~bild_mdo.verification.store.RESULT_KEYS` (``thrust_coefficient``,
+    ``torque_coefficient``, ``power_coefficient``, ``efficiency``,
+    ``figure_of_merit``, ``energy_loss`` in W, ``chord`` in m and ``twist`` in rad
+    as 1-D arrays; ``efficiency`` may be None/NaN at J = 0 and
+    ``figure_of_merit`` for J > 0).  Optional keys: ``converged`` (default True),
+    ``error`` (text, when not converged) and ``run_time`` (s; by default the
+    batch time divided by the number of cases).  Any other keys (the thrust
+    target, say) are passed on to ``optimize_fn`` untouched.
+``optimize_fn(case, bild_result) -> dict``
+    The reference BEM optimisation of one case, using ``case.optimizer``;
+    returns the same result keys plus ``converged`` (bool, required),
+    ``status`` (text), ``iterations`` (int) and optionally ``run_time`` (s; by
+    default the wall time of the call, measured in the worker).
+
+Both must be module-level functions (picklable) to run in worker processes or
+on a Dask cluster.
+"""
+import argparse
+import functools
+import os
+import sys
+import time
+import traceback
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .cases import OPTIMIZERS, SweepSpec
+from .executors import check_picklable, connect_dask, run_tasks
+from .progress import ProgressBar, format_duration
+from .store import INPUT_COLUMNS, RESULT_ARRAYS, RESULT_KEYS, ResultsStore
+
+ERROR_TEXT_LIMIT = 4000
+
+
+@dataclass
+class SweepResult:
+    """What one call of :func:`run_sweep` did.
+
+    Attributes
+    ----------
+    db_path : str
+        The results store.
+    num_cases : int
+        Cases in the sweep (or in the requested subset).
+    num_skipped : int
+        Cases already stored before this call (resume).
+    computed_ids : list of int
+        Cases computed and stored by this call, in completion order.
+    num_failed : int
+        Of those, cases whose optimisation (or BILD) did not converge or raised.
+    bild_batch_time : float
+        Wall time of the batched BILD call (s).
+    wall_time : float
+        Wall time of the whole call (s).
+    """
+
+    db_path: str
+    num_cases: int
+    num_skipped: int
+    computed_ids: list = field(default_factory=list)
+    num_failed: int = 0
+    bild_batch_time: float = 0.0
+    wall_time: float = 0.0
+
+
+def _error_text(exc):
+    text = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))
+    # Keep the end of long tracebacks: the raising frame and message are there.
+    return text if len(text) <= ERROR_TEXT_LIMIT else "..." + text[-ERROR_TEXT_LIMIT:]
+
+
+def _clean_result(result, require_values):
+    """Check one result dict and convert arrays to lists of float; returns (dict, error text)."""
+    if not isinstance(result, dict):
+        return None, f"expected a dict of results, got {type(result).__name__}"
+    missing = [key for key in RESULT_KEYS if key not in result]
+    if require_values and missing:
+        return None, f"converged result lacks keys {missing}"
+    clean = dict(result)
+    for key in RESULT_ARRAYS:
+        if clean.get(key) is not None:
+            arr = np.asarray(clean[key], dtype=float)
+            if arr.ndim != 1:
+                return None, f"'{key}' must be a 1-D distribution, got shape {arr.shape}"
+            clean[key] = arr.tolist()
+    return clean, None
+
+
+def optimize_task(optimize_fn, payload):
+    """Run one optimisation in a worker: time it and turn exceptions into an error report.
+
+    Parameters
+    ----------
+    optimize_fn : callable
+        ``optimize_fn(case, bild_result) -> dict``.
+    payload : tuple
+        ``(case, bild_result)``.
+
+    Returns
+    -------
+    dict
+        ``{'result': dict or None, 'error': str or None, 'run_time': float}``.
+    """
+    case, bild_result = payload
+    start = time.perf_counter()
+    try:
+        result = optimize_fn(case, bild_result)
+    except Exception as exc:
+        return {"result": None, "error": _error_text(exc), "run_time": time.perf_counter() - start}
+    run_time = time.perf_counter() - start
+    converged = isinstance(result, dict) and bool(result.get("converged", False))
+    if isinstance(result, dict) and "converged" not in result:
+        return {"result": None, "error": "optimize_fn result lacks the 'converged' flag", "run_time": run_time}
+    clean, problem = _clean_result(result, require_values=converged)
+    if problem:
+        return {"result": None, "error": f"optimize_fn: {problem}", "run_time": run_time}
+    return {"result": clean, "error": None, "run_time": run_time}
+
+
+def _base_row(case, bild, bild_time):
+    row = {"case_id": case.case_id}
+    for name, _kind in INPUT_COLUMNS:
+        row[name] = case.inputs[name]
+    for key in RESULT_KEYS:
+        row[f"bild_{key}"] = bild.get(key)
+    row["bild_converged"] = bool(bild.get("converged", True))
+    row["bild_time"] = bild_time
+    return row
+
+
+def _finish_row(row, outcome, error):
+    """Fill the optimisation columns from a task outcome (or an executor error)."""
+    if error is not None:
+        row.update(converged=False, status="worker failure", error=error)
+        return row
+    row["opt_time"] = outcome["run_time"]
+    if outcome["error"] is not None:
+        row.update(converged=False, status="exception", error=outcome["error"])
+        return row
+    result = outcome["result"]
+    for key in RESULT_KEYS:
+        row[f"opt_{key}"] = result.get(key)
+    row["converged"] = bool(result["converged"])
+    row["status"] = None if result.get("status") is None else str(result["status"])
+    row["iterations"] = result.get("iterations")
+    if result.get("run_time") is not None:
+        row["opt_time"] = float(result["run_time"])
+    return row
+
+
+def _bild_results(bild_batch_fn, cases):
+    start = time.perf_counter()
+    results = list(bild_batch_fn(cases))
+    elapsed = time.perf_counter() - start
+    if len(results) != len(cases):
+        raise ValueError(f"bild_batch_fn returned {len(results)} results for {len(cases)} cases")
+    per_case = elapsed / len(cases)
+    cleaned = []
+    for case, result in zip(cases, results):
+        converged = isinstance(result, dict) and bool(result.get("converged", True))
+        clean, problem = _clean_result(result, require_values=converged)
+        if problem:
+            raise ValueError(f"bild_batch_fn, case {case.case_id}: {problem}")
+        run_time = clean.get("run_time")
+        # optimize_fn gets the result as the model returned it; the store gets the checked copy.
+        cleaned.append((result, clean, per_case if run_time is None else float(run_time)))
+    return cleaned, elapsed
+
+
+def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=None, progress=True, case_ids=None):
+    """Run (or resume) a verification sweep into an SQLite results store.
+
+    Cases already in the store are skipped.  BILD runs once for all remaining
+    cases (one batched call); then ``optimize_fn`` runs per case through the
+    chosen executor and each row is committed as soon as its case returns.  An
+    optimisation that raises is stored with ``converged=False`` and the error
+    text; it never stops the sweep.
+
+    Parameters
+    ----------
+    spec : SweepSpec
+        The sweep.
+    db_path : str or os.PathLike
+        Results store; created if missing, resumed if it holds this sweep.
+    bild_batch_fn : callable
+        ``bild_batch_fn(list of Case) -> list of dict`` (see the module docstring).
+    optimize_fn : callable
+        ``optimize_fn(case, bild_result) -> dict``; module-level unless ``workers=1``.
+    workers : int
+        1 runs in this process, more uses that many local worker processes
+        (a script calling this must then guard the call with
+        ``if __name__ == '__main__':``).
+    scheduler : str or dask.distributed.Client, optional
+        Dask scheduler address (``'tcp://host:port'``); overrides ``workers``.
+    progress : bool or file-like
+        Progress report to stderr (True), to the given stream, or none (False).
+    case_ids : iterable of int, optional
+        Only these cases (default: the whole sweep).
+
+    Returns
+    -------
+    SweepResult
+
+    Raises
+    ------
+    StoreError
+        If ``db_path`` is not a results store of this sweep.
+    """
+    start = time.perf_counter()
+    cases = spec.cases(case_ids)
+    stream = None if progress is True else progress
+    task_fn = functools.partial(optimize_task, optimize_fn)
+    with ResultsStore(db_path, spec) as store:
+        done = store.done_ids()
+        remaining = [case for case in cases if case.case_id not in done]
+        result = SweepResult(db_path=os.fspath(db_path), num_cases=len(cases), num_skipped=len(cases) - len(remaining))
+        if remaining:
+            # Executor problems surface before the BILD batch, not after it.
+            client, owned = None, False
+            if scheduler is not None:
+                check_picklable(task_fn, "a Dask cluster")
+                client, owned = connect_dask(scheduler)
+            elif workers != 1:
+                check_picklable(task_fn, "worker processes")
+            try:
+                _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result)
+            finally:
+                if owned:
+                    client.close()
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result):
+    bild, result.bild_batch_time = _bild_results(bild_batch_fn, remaining)
+    if progress:
+        print(f"BILD: {len(remaining)} cases in {result.bild_batch_time:.2f} s; {result.num_skipped} already stored",
+              file=stream or sys.stderr)
+    bar = ProgressBar(len(remaining), label="optimise", stream=stream) if progress else None
+    try:
+        tasks, pending_rows = [], {}
+        for case, (bild_result, bild_clean, bild_time) in zip(remaining, bild):
+            row = _base_row(case, bild_clean, bild_time)
+            if row["bild_converged"]:
+                pending_rows[case.case_id] = row
+                tasks.append((case.case_id, (case, bild_result)))
+            else:
+                # Without a BILD design there is no thrust target for the optimisation.
+                row.update(converged=False, status="BILD failed",
+                           error=str(bild_result.get("error") or "BILD did not converge"))
+                _store(store, row, result, bar)
+        for case_id, outcome, error in run_tasks(task_fn, tasks, workers=workers, scheduler=client):
+            _store(store, _finish_row(pending_rows.pop(case_id), outcome, error), result, bar)
+    finally:
+        if bar is not None:
+            bar.close()
+
+
+def _store(store, row, result, bar):
+    store.write(row)
+    result.computed_ids.append(row["case_id"])
+    if not (row["converged"] and row["bild_converged"]):
+        result.num_failed += 1
+    if bar is not None:
+        bar.update()
+
+
+def default_db_path(spec):
+    """Default results file name for a sweep: ``bild-verify-L{levels}-{optimizer}.sqlite`` in the working directory."""
+    return f"bild-verify-L{spec.levels}-{spec.optimizer}.sqlite"
+
+
+def add_verify_arguments(parser):
+    """Add the ``verify`` options to an argparse parser.
+
+    Options: ``--levels``, ``--workers``, ``--scheduler``, ``--db``,
+    ``--optimizer``, ``--figures``, ``--no-progress``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        The same parser.
+    """
+    parser.add_argument("--levels", type=int, default=10,
+                        help="levels per swept axis (J, R, altitude, c_ref); 10 gives the paper's 10,000 cases")
+    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                        help="local worker processes for the optimisations (1 = in this process; default: CPU count)")
+    parser.add_argument("--scheduler", metavar="ADDR", default=None,
+                        help="Dask scheduler address, e.g. tcp://host:8786 (needs bild-mdo[dask]); overrides --workers")
+    parser.add_argument("--db", metavar="FILE", default=None,
+                        help="SQLite results store; an existing store of the same sweep is resumed "
+                             "(default: bild-verify-L<levels>-<optimizer>.sqlite)")
+    parser.add_argument("--optimizer", choices=OPTIMIZERS, default="slsqp",
+                        help="optimiser of the reference BEM optimisation (default: slsqp)")
+    parser.add_argument("--figures", metavar="DIR", default=None,
+                        help="write Fig. 4 and Fig. 5 as PNG files into DIR (needs bild-mdo[plot])")
+    parser.add_argument("--no-progress", action="store_true", help="no progress report on stderr")
+    return parser
+
+
+def run_verify_from_args(args, bild_batch_fn, optimize_fn, stream=None):
+    """Run the sweep from parsed ``verify`` options and print the Table 3 reproduction.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        From a parser set up with :func:`add_verify_arguments`.
+    bild_batch_fn, optimize_fn : callable
+        See :func:`run_sweep`.
+    stream : file-like, optional
+        Where the table goes (stdout by default).
+
+    Returns
+    -------
+    Table3
+    """
+    from .statistics import format_table3, table3
+
+    stream = sys.stdout if stream is None else stream
+    spec = SweepSpec(levels=args.levels, optimizer=args.optimizer)
+    db_path = args.db or default_db_path(spec)
+    if args.figures:
+        # Fail before hours of computing, not after.
+        from .figures import require_matplotlib
+
+        require_matplotlib()
+    run = run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=args.workers, scheduler=args.scheduler,
+                    progress=not args.no_progress)
+    with ResultsStore(db_path, spec) as store:
+        rows = store.rows()
+    table = table3(rows)
+    print(
+        f"Sweep of {spec.num_cases} cases in {db_path}: {run.num_skipped} resumed, {len(run.computed_ids)} computed "
+        f"in {format_duration(run.wall_time)} ({run.num_failed} not converged).",
+        file=stream,
+    )
+    print(format_table3(table), file=stream)
+    if args.figures:
+        from .figures import save_figures
+
+        for path in save_figures(rows, args.figures):
+            print(f"wrote {path}", file=stream)
+    return table
+
+
+def verify_parser():
+    """A stand-alone parser with the ``verify`` options (for scripts and tests)."""
+    return add_verify_arguments(argparse.ArgumentParser(prog="bild-mdo verify", description=__doc__.splitlines()[0]))

@@ -1,0 +1,43 @@
+import sys
+import types
+
+import pytest
+
+from bild_mdo.verification import SweepSpec, run_sweep
+from bild_mdo.verification.executors import run_tasks
+from tests.verification import standins
+
+
+def test_in_process_runs_in_order_and_propagates():
+    tasks = [("a", ("A", 0.0)), ("b", ("B", 0.0))]
+    assert list(run_tasks(standins.sleep_echo, tasks, workers=1)) == [("a", "A", None), ("b", "B", None)]
+    with pytest.raises(TypeError):
+        list(run_tasks(standins.sleep_echo, [("x", None)], workers=1))
+
+
+def test_process_pool_yields_in_completion_order():
+    # The first task sleeps 1.5 s, the second not at all: with two workers the second finishes first.
+    tasks = [("slow", ("S", 1.5)), ("fast", ("F", 0.0))]
+    results = list(run_tasks(standins.sleep_echo, tasks, workers=2))
+    assert results == [("fast", "F", None), ("slow", "S", None)]
+
+
+def test_exceptions_in_workers_are_reported_not_raised():
+    results = dict((k, (v, e)) for k, v, e in run_tasks(standins.sleep_echo, [("x", None), ("y", (1, 0))], workers=2))
+    assert results["y"] == (1, None)
+    assert results["x"][0] is None and results["x"][1].startswith("TypeError:")
+
+
+def test_workers_that_cannot_import_the_function_fail_clearly(tmp_path, monkeypatch):
+    # A module that exists only in this process: it pickles by reference, but workers cannot import it.
+    ghost = types.ModuleType("bild_h6_ghost_module")
+    exec("def optimize(case, bild_result):\n    return {'converged': False}\n", ghost.__dict__)
+    monkeypatch.setitem(sys.modules, ghost.__name__, ghost)
+    with pytest.raises(RuntimeError, match="worker processes cannot load.*ModuleNotFoundError.*importable"):
+        run_sweep(SweepSpec(levels=2), tmp_path / "s.sqlite", standins.bild_batch, ghost.optimize, workers=2,
+                  progress=False)
+
+
+def test_invalid_workers():
+    with pytest.raises(ValueError, match="workers must be >= 1"):
+        run_tasks(standins.sleep_echo, [], workers=0)
