@@ -2,5 +2,19 @@
 
 Implements Ruh & Hwang, "Fast and robust computation of optimal rotor designs
 using blade element momentum theory", AIAA Journal 61(9), 2023.
+
+The public API is re-exported here::
+
+    from bild_mdo import BILDGroup, BEMAnalysisGroup, analyze_rotor, naca4412
 """
 __version__ = "0.1.0"
+
+from bild_mdo.airfoil import AnalyticPolar, Polar, TabulatedPolar, get_polar, naca4412
+from bild_mdo.atmosphere import AtmosphereComp, isa
+from bild_mdo.bem import BEMAnalysisGroup, BEMResult, analyze_rotor
+from bild_mdo.bild import BILDGroup
+
+__all__ = [
+    "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BILDGroup", "Polar",
+    "TabulatedPolar", "analyze_rotor", "get_polar", "isa", "naca4412", "__version__",
+]

@@ -83,8 +83,10 @@ class Polar(abc.ABC):
         alpha = np.asarray(alpha)
         reynolds = np.asarray(reynolds)
         alpha, reynolds = np.broadcast_arrays(alpha, reynolds)
-        vals = self._evaluate_real(np.ascontiguousarray(_real(alpha), dtype=float),
-                                   np.ascontiguousarray(_real(reynolds), dtype=float))
+        shape = alpha.shape
+        vals = self._evaluate_real(np.require(np.atleast_1d(_real(alpha)), float, "C"),
+                                   np.require(np.atleast_1d(_real(reynolds)), float, "C"))
+        vals = PolarValues(*(np.reshape(v, shape) for v in vals))
         if not (np.iscomplexobj(alpha) or np.iscomplexobj(reynolds)):
             return vals
         ia = np.imag(alpha)
@@ -102,8 +104,9 @@ class Polar(abc.ABC):
         """
         alpha, reynolds = np.broadcast_arrays(np.asarray(_real(alpha), dtype=float),
                                               np.asarray(_real(reynolds), dtype=float))
-        return self._second_derivatives_real(np.ascontiguousarray(alpha),
-                                             np.ascontiguousarray(reynolds))
+        second = self._second_derivatives_real(np.require(np.atleast_1d(alpha), float, "C"),
+                                               np.require(np.atleast_1d(reynolds), float, "C"))
+        return PolarSecondDerivatives(*(np.reshape(v, alpha.shape) for v in second))
 
     def max_lift_to_drag(self, reynolds):
         """Maximum-L/D point ``alpha*(Re), cl*(Re), cd*(Re)`` with Re derivatives.
