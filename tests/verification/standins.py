@@ -78,3 +78,18 @@ def sleep_echo(task):
     """``task = (value, seconds)``: sleep, then return the value."""
     time.sleep(task[1])
     return task[0]
+
+
+def echo_after_file(task):
+    """``task = (value, wait_for, create)``: wait until file ``wait_for`` exists (if given), create
+    file ``create`` (if given), then return the value.  Orders two workers without timing assumptions."""
+    value, wait_for, create = task
+    if wait_for is not None:
+        deadline = time.monotonic() + 60.0
+        while not os.path.exists(wait_for):
+            if time.monotonic() > deadline:
+                raise TimeoutError(f"{wait_for} never appeared")
+            time.sleep(0.01)
+    if create is not None:
+        open(create, "w").close()
+    return value

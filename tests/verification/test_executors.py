@@ -15,10 +15,12 @@ def test_in_process_runs_in_order_and_propagates():
         list(run_tasks(standins.sleep_echo, [("x", None)], workers=1))
 
 
-def test_process_pool_yields_in_completion_order():
-    # The first task sleeps 1.5 s, the second not at all: with two workers the second finishes first.
-    tasks = [("slow", ("S", 1.5)), ("fast", ("F", 0.0))]
-    results = list(run_tasks(standins.sleep_echo, tasks, workers=2))
+def test_process_pool_yields_in_completion_order(tmp_path):
+    # The first task cannot finish before the second has run (it waits for the file the second
+    # creates), so with two workers the results must come back second-first.
+    marker = str(tmp_path / "fast-done")
+    tasks = [("slow", ("S", marker, None)), ("fast", ("F", None, marker))]
+    results = list(run_tasks(standins.echo_after_file, tasks, workers=2))
     assert results == [("fast", "F", None), ("slow", "S", None)]
 
 
