@@ -102,6 +102,8 @@ class AtmosphereComp(om.ExplicitComponent):
     -------
     num_nodes : int
         Number of designs / operating points.
+    num_radial : int
+        Number of radial stations (unused; declared for a uniform interface).
 
     Inputs
     ------
@@ -111,10 +113,18 @@ class AtmosphereComp(om.ExplicitComponent):
     Outputs
     -------
     rho[nn] (kg/m**3), mu[nn] (Pa*s), speed_of_sound[nn] (m/s)
+
+    Raises
+    ------
+    openmdao.api.AnalysisError
+        When an altitude is outside 0 ... 11,000 m or not finite, so that an
+        optimiser can back off (the plain :func:`isa` raises ``ValueError``).
     """
 
     def initialize(self):
         self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
+        self.options.declare("num_radial", types=int, default=1,
+                             desc="number of radial stations (unused; uniform interface)")
 
     def setup(self):
         nn = self.options["num_nodes"]
@@ -128,14 +138,20 @@ class AtmosphereComp(om.ExplicitComponent):
         for name in ("rho", "mu", "speed_of_sound"):
             self.declare_partials(name, "altitude", rows=rows, cols=cols)
 
+    def _isa(self, altitude):
+        try:
+            return isa(altitude)
+        except ValueError as err:
+            raise om.AnalysisError(f"{self.msginfo}: {err}") from err
+
     def compute(self, inputs, outputs):
-        state = isa(inputs["altitude"])
+        state = self._isa(inputs["altitude"])
         outputs["rho"] = state.rho
         outputs["mu"] = state.mu
         outputs["speed_of_sound"] = state.speed_of_sound
 
     def compute_partials(self, inputs, partials):
-        state = isa(inputs["altitude"])
+        state = self._isa(inputs["altitude"])
         partials["rho", "altitude"] = state.drho_dh
         partials["mu", "altitude"] = state.dmu_dh
         partials["speed_of_sound", "altitude"] = state.dspeed_of_sound_dh

@@ -62,10 +62,26 @@ def test_component_partials_and_values():
     assert_check_partials(data, atol=1e-12, rtol=1e-10)
 
 
-def test_component_rejects_out_of_range():
+@pytest.mark.parametrize("altitude", [-1.0, 12000.0, np.nan])
+def test_component_rejects_out_of_range(altitude):
+    # Inside a model the error is an AnalysisError (an optimiser backs off from it), not a ValueError;
+    # the plain isa() keeps ValueError (test_out_of_range_altitude_raises).
     prob = om.Problem(reports=False)
     prob.model.add_subsystem("atm", AtmosphereComp(num_nodes=2), promotes=["*"])
     prob.setup()
-    prob.set_val("altitude", [0.0, 12000.0])
-    with pytest.raises(ValueError, match="altitude"):
+    prob.set_val("altitude", [0.0, altitude])
+    with pytest.raises(om.AnalysisError, match="altitude must be within 0 ... 11000 m") as info:
         prob.run_model()
+    assert not isinstance(info.value, ValueError)
+
+
+def test_component_takes_num_radial():
+    # Every component takes num_nodes and num_radial (uniform interface); the atmosphere is per node only.
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("atm", AtmosphereComp(num_nodes=3, num_radial=7), promotes=["*"])
+    prob.setup(force_alloc_complex=True)
+    prob.set_val("altitude", [0.0, 3000.0, 9000.0])
+    prob.run_model()
+    assert prob.get_val("rho").shape == (3,)
+    np.testing.assert_allclose(prob.get_val("rho")[:2], [1.2250, 0.9093], atol=1e-4)  # ISA table
+    assert_check_partials(prob.check_partials(method="cs", out_stream=None), atol=1e-12, rtol=1e-10)

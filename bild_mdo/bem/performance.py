@@ -45,6 +45,24 @@ def _abs(x):
     return np.where(np.real(x) < 0.0, -x, x)
 
 
+def _check_power(Q, rpm):
+    """Raise where the metrics of Table 2 would divide by a zero power or rotor speed."""
+    q, n = np.broadcast_arrays(np.real(Q), np.real(rpm))
+    q, n = np.atleast_1d(q), np.atleast_1d(n)
+    checks = (
+        (~(n > 0.0) | ~np.isfinite(n), "rpm",
+         "the rotor speed must be positive and finite (the coefficients divide by n = rpm/60)"),
+        ((q == 0.0) | ~np.isfinite(q), "torque",
+         "the shaft power P = Omega Q must be nonzero and finite (the efficiency and figure of merit divide by "
+         "it); Q = 0 means no blade element is loaded, e.g. a hover design whose stations are all unloaded"),
+    )
+    for bad, name, rule in checks:
+        if np.any(bad):
+            node = int(np.flatnonzero(bad)[0])
+            value = float((n if name == "rpm" else q)[node])
+            raise om.AnalysisError(f"rotor performance: {name} = {value!r} at node {node}: {rule}.")
+
+
 def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
     """Performance metrics of Table 2 and their partials with respect to the primitives.
 
@@ -66,7 +84,18 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
     partials : dict
         Output name -> {primitive: array}; primitives are 'T', 'Q', 'S', 'v_axial',
         'rpm', 'radius', 'rho'.
+
+    Raises
+    ------
+    openmdao.api.AnalysisError
+        Where ``rpm <= 0`` or the shaft power ``P = Omega Q`` is zero (or
+        either is not finite): the efficiency, figure of merit and coefficients
+        divide by them and would be inf/NaN.  Negative power (``Q < 0`` at
+        ``rpm > 0``: a windmilling rotor, which the BEM analysis reports) keeps
+        finite, signed values.  In hover (``V_x = 0``) the efficiency is
+        exactly 0.
     """
+    _check_power(Q, rpm)
     omega = rpm * _RPM_TO_RAD_S
     n = rpm / 60.0
     D = 2.0 * radius
@@ -116,7 +145,9 @@ class RotorPerformanceComp(om.ExplicitComponent):
     with the station widths of :class:`~bild_mdo.bem.stations.StationsComp`.
     The figure of merit is extended as an odd function of thrust,
     ``FM = T sqrt(|T|) / (P sqrt(2 pi R^2 rho))``, so that it stays real when
-    a windmilling rotor produces negative thrust.
+    a windmilling rotor produces negative thrust.  Zero torque or a
+    non-positive rpm raises :class:`openmdao.api.AnalysisError` (see
+    :func:`rotor_performance`).
 
     Options
     -------
@@ -182,17 +213,22 @@ class RotorPerformanceComp(om.ExplicitComponent):
         S = np.sum(inputs["chord"] * inputs["dr"], axis=1)
         return T, Q, S
 
-    def compute(self, inputs, outputs):
+    def _performance(self, inputs):
         T, Q, S = self._primitives(inputs)
-        values, _ = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
-                                      inputs["rho"], self.options["num_blades"])
+        try:
+            values, d = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
+                                          inputs["rho"], self.options["num_blades"])
+        except om.AnalysisError as err:
+            raise om.AnalysisError(f"{self.msginfo}: {err}") from err
+        return values, d
+
+    def compute(self, inputs, outputs):
+        values, _ = self._performance(inputs)
         for name, val in values.items():
             outputs[name] = val
 
     def compute_partials(self, inputs, partials):
-        T, Q, S = self._primitives(inputs)
-        _, d = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
-                                 inputs["rho"], self.options["num_blades"])
+        _, d = self._performance(inputs)
         dr = inputs["dr"]
         # d(primitive)/d(dr) per station
         dprim_ddr = {"T": inputs["dthrust_dr"], "Q": inputs["dtorque_dr"], "S": inputs["chord"]}

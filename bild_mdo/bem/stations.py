@@ -7,6 +7,10 @@ import openmdao.api as om
 from bild_mdo.utils.sparsity import dist_wrt_node
 
 
+# Relative round-off allowed where a station or annulus meets the hub or the tip (fractions of R).
+_ROUND_OFF = 1e-12
+
+
 def _fraction_array(value, name, nn, nr):
     arr = np.asarray(value, dtype=float)
     if arr.shape == (nr,):
@@ -14,6 +18,40 @@ def _fraction_array(value, name, nn, nr):
     if arr.shape != (nn, nr):
         raise ValueError(f"{name} must have shape ({nr},) or ({nn}, {nr}), got {arr.shape}")
     return np.array(arr)
+
+
+def _first_failure(bad):
+    """``(node, station)`` of the first True entry of a (nn, nr) mask."""
+    node, station = (int(i) for i in np.argwhere(bad)[0])
+    return node, station
+
+
+def _validate_fractions(rf, wf, centred, where):
+    """Check user stations (fractions of R); ValueError naming the option and the first bad entry."""
+    checks = [
+        (~np.isfinite(rf), "radial_fractions", lambda i: f"r/R = {rf[i]:.6g} is not finite"),
+        (~np.isfinite(wf), "width_fractions", lambda i: f"dr/R = {wf[i]:.6g} is not finite"),
+        (~(rf > 0.0) | ~(rf <= 1.0 + _ROUND_OFF), "radial_fractions",
+         lambda i: f"r/R = {rf[i]:.6g} is not on the blade (0 < r/R <= 1)"),
+        (~(wf > 0.0), "width_fractions", lambda i: f"dr/R = {wf[i]:.6g} is not positive"),
+    ]
+    if centred:
+        checks += [
+            (~(rf < 1.0), "radial_fractions",
+             lambda i: f"r/R = {rf[i]:.6g} is not inside the blade (0 < r/R < 1 for centred annuli)"),
+            (~(rf - 0.5 * wf >= -_ROUND_OFF) | ~(rf + 0.5 * wf <= 1.0 + _ROUND_OFF), "width_fractions",
+             lambda i: f"the annulus r/R +- dr/(2R) = [{rf[i] - 0.5 * wf[i]:.6g}, {rf[i] + 0.5 * wf[i]:.6g}] "
+                       "is not inside [0, 1]"),
+        ]
+    for bad, name, what in checks:
+        if np.any(bad):
+            node, station = _first_failure(bad)
+            raise ValueError(f"{where}: {name}: {what((node, station))} at node {node}, station {station}")
+    total = np.sum(wf, axis=1)
+    if np.any(total > 1.0 + _ROUND_OFF):
+        node = int(np.flatnonzero(total > 1.0 + _ROUND_OFF)[0])
+        raise ValueError(f"{where}: width_fractions: the widths of node {node} add up to "
+                         f"{total[node]:.6g} > 1, more than the blade span")
 
 
 class StationsComp(om.ExplicitComponent):
@@ -26,6 +64,19 @@ class StationsComp(om.ExplicitComponent):
     (options ``radial_fractions`` and ``width_fractions``, shape (nr,) or
     (nn, nr)); then ``r = radial_fractions * R`` and ``dr = width_fractions * R``.
 
+    User stations are validated in ``setup`` (``ValueError`` naming the
+    option, node and station): finite, ``0 < r/R <= 1``, ``dr/R > 0`` and
+    widths that add up to at most the radius.  A station exactly at the tip,
+    and widths that are not centred on their stations, are allowed because
+    published quadratures use them (a rectangle rule with the last station at
+    the tip, trapezoid or Voronoi-cell widths).  With ``centred_annuli=True``
+    every station must be the midpoint of an annulus on the disk:
+    ``0 < r/R < 1`` and ``r/R +- dr/(2R)`` inside ``[0, 1]``.  In ``compute``
+    every station must lie outside the hub, ``r >= r_hub`` (with
+    ``centred_annuli``: its whole annulus, ``r - dr/2 >= r_hub``), to
+    round-off; otherwise :class:`openmdao.api.AnalysisError` names the node
+    and station.
+
     Options
     -------
     num_nodes, num_radial : int
@@ -34,6 +85,9 @@ class StationsComp(om.ExplicitComponent):
         Station radii r/R; None for equal annuli.
     width_fractions : array_like or None
         Station widths dr/R; required with ``radial_fractions``.
+    centred_annuli : bool
+        Require every user station to be the midpoint of an annulus that lies
+        on the blade (default False).
 
     Inputs
     ------
@@ -54,6 +108,9 @@ class StationsComp(om.ExplicitComponent):
                                   "None for midpoints of equal annuli")
         self.options.declare("width_fractions", default=None, allow_none=True,
                              desc="station widths as fractions of the tip radius (with radial_fractions)")
+        self.options.declare("centred_annuli", types=bool, default=False,
+                             desc="require each user station to be the midpoint of an annulus on the blade "
+                                  "(r/R +- dr/(2R) inside [0, 1], r - dr/2 >= hub radius)")
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
@@ -70,6 +127,7 @@ class StationsComp(om.ExplicitComponent):
         else:
             self._user = (_fraction_array(rf, "radial_fractions", nn, nr),
                           _fraction_array(wf, "width_fractions", nn, nr))
+            _validate_fractions(*self._user, self.options["centred_annuli"], self.msginfo)
 
     def setup_partials(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
@@ -98,3 +156,17 @@ class StationsComp(om.ExplicitComponent):
             rf, wf = self._user
             outputs["radii"] = rf * R
             outputs["dr"] = wf * R
+        self._check_outside_hub(np.real(outputs["radii"]), np.real(outputs["dr"]), np.real(R),
+                                np.real(inputs["hub_radius"]))
+
+    def _check_outside_hub(self, radii, dr, R, hub):
+        centred = self.options["centred_annuli"]
+        inner = radii - 0.5 * dr if centred else radii
+        bad = ~(inner >= hub[:, None] - _ROUND_OFF * R)
+        if np.any(bad):
+            node, station = _first_failure(bad)
+            rule = "r - dr/2 >= hub_radius (centred annuli)" if centred else "r >= hub_radius"
+            raise om.AnalysisError(
+                f"{self.msginfo}: node {node}, station {station} lies inside the hub (r = "
+                f"{radii[node, station]:.6g} m, dr = {dr[node, station]:.6g} m, hub_radius = {hub[node]:.6g} m, "
+                f"R = {R[node, 0]:.6g} m); the stations need {rule}: move them outboard or reduce the hub radius")

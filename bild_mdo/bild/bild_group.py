@@ -67,6 +67,23 @@ class BILDGroup(om.Group):
     correction changes only the chord (and with it the solidity), as in the
     paper's Sec. 5.2.2.
 
+    Limits of the ideal loading:
+
+    * Hover: a station where ``lambda <= V_theta / (2 L/D)`` (``lambda`` of
+      Eq. (22), ``L/D = C_l*/C_d*``) cannot be loaded; it gets ``eta2 = 1``,
+      no induction and zero chord.  This is the continuous limit
+      ``V_x -> 0+`` of the quartic root, not a special case.  If every
+      station is unloaded the rotor has no torque and the performance
+      component raises :class:`openmdao.api.AnalysisError`.
+    * Forward flight: every station must produce thrust (Assumption 3,
+      ``u_x > V_x``), which needs ``V_x < eta2 V_theta C_l*/C_d*``.  Inboard
+      stations at a high advance ratio with a low-L/D airfoil break it;
+      ``induced_velocity`` then raises :class:`openmdao.api.AnalysisError`
+      naming the node and station (remedies: a larger ``hub_radius_ratio``, a
+      lower advance ratio / ``V_x``, or an airfoil with a higher L/D).
+    * User stations (``radial_fractions``) must lie on the blade outside the
+      hub (see :class:`~bild_mdo.bem.stations.StationsComp`).
+
     Options
     -------
     num_nodes : int

@@ -128,10 +128,20 @@ class ChordComp(om.ExplicitComponent):
             dcoef_dphi = cl * cos - cd * sin
             dcoef_dcl, dcoef_dcd = sin, cos
             scale = scale * inputs["radii"]
-        if np.any(np.real(coef) <= 0.0):
+        bad = ~(np.real(coef) > 0.0)
+        if np.any(bad):
+            node, station = (int(i) for i in np.argwhere(bad)[0])
+            if self.options["chord_form"] == "thrust":
+                kind, rule = "C_x = C_l cos(phi) - C_d sin(phi)", "phi < atan(C_l/C_d)"
+            else:
+                kind, rule = "C_theta = C_l sin(phi) + C_d cos(phi)", "phi > -atan(C_d/C_l)"
             raise om.AnalysisError(
-                f"{self.msginfo}: the blade-element force coefficient is not positive (inflow angle "
-                "beyond atan(C_l/C_d)); the chord cannot be back-computed")
+                f"{self.msginfo}: the blade-element force coefficient {kind} is not positive at "
+                f"{int(np.sum(bad))} station(s), first at node {node}, station {station} "
+                f"(phi = {np.real(phi[node, station]):.6g} rad, C_l/C_d = "
+                f"{np.real(cl[node, 0] / cd[node, 0]):.6g}); the chord needs {rule} to be back-computed. "
+                "In the BILD chain the station cannot carry the ideal load (Assumption 3): increase "
+                "hub_radius_ratio, lower the advance ratio / V_x, or use an airfoil with a higher maximum L/D")
         return load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale
 
     def compute(self, inputs, outputs):

@@ -66,9 +66,13 @@ class GeometryComp(om.ExplicitComponent):
         ref = inputs["ref_radius_ratio"]
         radius = inputs["radius"]
         hub_r, ref_r, rad_r = np.real(hub), np.real(ref), np.real(radius)
-        if np.any(rad_r <= 0.0):
-            raise om.AnalysisError(f"{self.msginfo}: radius must be positive, got {rad_r}")
-        if np.any(hub_r <= 0.0) or np.any(ref_r >= 1.0) or np.any(hub_r >= ref_r):
+        # Written as ~(x > 0) so that NaN fails the checks too.
+        if np.any(~(rad_r > 0.0) | ~np.isfinite(rad_r)):
+            raise om.AnalysisError(f"{self.msginfo}: radius must be positive and finite, got {rad_r}")
+        for name, value in (("hub_radius_ratio", hub_r), ("ref_radius_ratio", ref_r)):
+            if not np.all(np.isfinite(value)):
+                raise om.AnalysisError(f"{self.msginfo}: {name} must be finite, got {value}")
+        if np.any(~(hub_r > 0.0) | ~(ref_r < 1.0) | ~(hub_r < ref_r)):
             raise om.AnalysisError(
                 f"{self.msginfo}: the radius ratios must satisfy 0 < hub_radius_ratio < "
                 f"ref_radius_ratio < 1; got hub_radius_ratio={hub_r}, ref_radius_ratio={ref_r}")

@@ -71,7 +71,9 @@ class IdealLoadingComp(om.ExplicitComponent):
             (u_x > v_x, "u_x_ref > V_x", "the reference station must produce thrust (check the reference chord, "
                                          "rpm and airfoil point)"),
             (u_t > 0.0, "u_theta_ref > 0", "the reference station must absorb torque"),
-            (u_t < v_t, "u_theta_ref < V_theta_ref", "the tangential induction cannot exceed the blade speed"),
+            (u_t < v_t, "u_theta_ref < V_theta_ref", "the reference station is overloaded (the tangential "
+                                                      "induction reaches the blade speed): reduce ref_chord "
+                                                      "(reference solidity) or the advance ratio"),
         )
         for ok, rule, hint in checks:
             bad = ~(ok & np.isfinite(u_x) & np.isfinite(u_t) & np.isfinite(v_x) & np.isfinite(v_t))

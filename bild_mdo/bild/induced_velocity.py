@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.quartic_coefficients import axial_velocity_root
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 
@@ -12,12 +13,25 @@ class InducedVelocityComp(om.ExplicitComponent):
 
         u_theta = 2 V_theta (1 - eta2)                                  Eq. (24)
         b       = (V_x - V_theta s) / 2
-        q       = b**2 + eta2 V_theta**2 (1 - eta2 + (V_x/V_theta) s)
-        u_x     = b + sqrt(q)                                           Eq. (26)
+        c       = eta2 V_theta (V_theta (1 - eta2) + V_x s)
+        u_x     = b + sqrt(b**2 + c)                                    Eq. (26)
 
-    ``q >= b**2 >= 0`` for ``0.5 <= eta2 <= 1``, so the root is real; an
+    ``c >= 0`` for ``0.5 <= eta2 <= 1``, so the root is real.  For ``b < 0``
+    (always in hover) ``b + sqrt(b**2 + c)`` cancels when ``c`` is small
+    (``eta2`` near 1); the root is then evaluated as ``c / (sqrt(b**2 + c) - b)``
+    (:func:`~bild_mdo.bild.quartic_coefficients.axial_velocity_root`).  An
     unloaded station in hover (``eta2 = 1``, ``V_x = 0``) gives ``u_x = 0``
-    and ``u_theta = 0`` with finite derivatives (``q = b**2 > 0``).
+    and ``u_theta = 0`` with finite derivatives (``sqrt(b**2 + c) = |b| > 0``).
+
+    Assumption 3 (positive local thrust, ``u_x > V_x``) is checked here:
+    ``u_x - V_x`` has the sign of ``(1 - eta2)(eta2 V_theta - s V_x)``
+    (hand derivation from Eq. (25)), so a loaded station needs
+    ``V_x < eta2 V_theta C_l*/C_d*``.  It fails at inboard stations (small
+    ``V_theta``) at a high advance ratio with a low-L/D airfoil; such a
+    station would windmill, and the compute raises
+    :class:`openmdao.api.AnalysisError` naming it.  The unloaded hover
+    station (``eta2 = 1``, ``V_x = 0``, so ``u_x = V_x = 0``) satisfies the
+    rule and is legitimate.
 
     Options
     -------
@@ -81,29 +95,49 @@ class InducedVelocityComp(om.ExplicitComponent):
         v_x = inputs["v_axial"][:, None]
         s = (inputs["cd_star"] / inputs["cl_star"])[:, None]
         b = 0.5 * (v_x - v_t * s)
-        q = b ** 2 + eta2 * v_t ** 2 * (1.0 - eta2) + eta2 * v_t * v_x * s
-        return eta2, v_t, v_x, s, b, q
+        c = eta2 * v_t * (v_t * (1.0 - eta2) + v_x * s)
+        return eta2, v_t, v_x, s, b, c
+
+    def _check_positive_thrust(self, eta2, v_t, v_x, s):
+        """Raise unless ``V_x < eta2 V_theta / s`` (Assumption 3, ``u_x > V_x``) at every station."""
+        eta2, v_t, v_x, s = (np.real(a) for a in (eta2, v_t, v_x, s))
+        limit = eta2 * v_t / s
+        bad = ~(v_x < limit)
+        if not np.any(bad):
+            return
+        node, station = (int(i) for i in np.argwhere(bad)[0])
+        raise om.AnalysisError(
+            f"{self.msginfo}: Assumption 3 (u_x > V_x, positive local thrust) fails at {int(np.sum(bad))} "
+            f"station(s), first at node {node}, station {station} (V_theta = {v_t[node, station]:.6g} m/s, "
+            f"eta2 = {eta2[node, station]:.6g}, V_x = {v_x[node, 0]:.6g} m/s, "
+            f"C_l*/C_d* = {1.0 / s[node, 0]:.6g}): it needs V_x < eta2 V_theta C_l*/C_d* "
+            f"= {limit[node, station]:.6g} m/s, else the blade element windmills. Increase hub_radius_ratio "
+            "(inboard stations have the lowest V_theta), lower the advance ratio / V_x, or use an airfoil "
+            "with a higher maximum L/D.")
 
     def compute(self, inputs, outputs):
-        eta2, v_t, _, _, b, q = self._terms(inputs)
-        outputs["u_x"] = b + np.sqrt(q)
+        eta2, v_t, v_x, s, b, c = self._terms(inputs)
+        self._check_positive_thrust(eta2, v_t, v_x, s)
+        outputs["u_x"] = axial_velocity_root(b, c)[0]  # Eq. (26)
         outputs["u_theta"] = 2.0 * v_t * (1.0 - eta2)
 
     def compute_partials(self, inputs, partials):
-        eta2, v_t, v_x, s, b, q = self._terms(inputs)
-        half_inv_sqrt = 0.5 / np.sqrt(q)
+        eta2, v_t, v_x, s, b, c = self._terms(inputs)
+        u_x, root = axial_velocity_root(b, c)
         cl = inputs["cl_star"][:, None]
         cd = inputs["cd_star"][:, None]
 
-        dq_deta2 = v_t ** 2 * (1.0 - 2.0 * eta2) + v_t * v_x * s
-        dq_dvx = b + eta2 * v_t * s
-        dq_dvt = -b * s + 2.0 * eta2 * v_t * (1.0 - eta2) + eta2 * v_x * s
-        dq_ds = -b * v_t + eta2 * v_t * v_x
-        dux_ds = -0.5 * v_t + dq_ds * half_inv_sqrt
+        # Differentiating u**2 - 2 b u - c = 0 (Eq. (25)): du = (2 u db + dc) / (2 sqrt(b**2 + c)).
+        inv_two_root = 0.5 / root
+        dc_deta2 = v_t * (v_t * (1.0 - 2.0 * eta2) + v_x * s)
+        dc_dvx = eta2 * v_t * s
+        dc_dvt = eta2 * (2.0 * v_t * (1.0 - eta2) + v_x * s)
+        dc_ds = eta2 * v_t * v_x
+        dux_ds = (-u_x * v_t + dc_ds) * inv_two_root
 
-        partials["u_x", "eta2"] = (dq_deta2 * half_inv_sqrt).ravel()
-        partials["u_x", "v_axial"] = (0.5 + dq_dvx * half_inv_sqrt).ravel()
-        partials["u_x", "v_theta"] = (-0.5 * s + dq_dvt * half_inv_sqrt).ravel()
+        partials["u_x", "eta2"] = (dc_deta2 * inv_two_root).ravel()
+        partials["u_x", "v_axial"] = ((u_x + dc_dvx) * inv_two_root).ravel()
+        partials["u_x", "v_theta"] = ((-u_x * s + dc_dvt) * inv_two_root).ravel()
         partials["u_x", "cl_star"] = (dux_ds * (-cd / cl ** 2)).ravel()
         partials["u_x", "cd_star"] = (dux_ds / cl).ravel()
         partials["u_theta", "eta2"] = (-2.0 * v_t).ravel()

@@ -77,9 +77,13 @@ class InflowAngleComp(om.ExplicitComponent):
     def compute(self, inputs, outputs):
         u_x = inputs["u_x"]
         v_t = inputs["v_theta"] - 0.5 * inputs["u_theta"]
-        if np.any(np.real(v_t) <= 0.0):
-            raise om.AnalysisError(f"{self.msginfo}: u_theta >= 2 V_theta at some station (eta2 <= 0); "
-                                   "the inflow angle is undefined")
+        bad = ~(np.real(v_t) > 0.0)
+        if np.any(bad):
+            node, station = (int(i) for i in np.argwhere(bad)[0])
+            raise om.AnalysisError(
+                f"{self.msginfo}: u_theta >= 2 V_theta (eta2 <= 0) at {int(np.sum(bad))} station(s), first at "
+                f"node {node}, station {station} (u_theta = {np.real(inputs['u_theta'][node, station]):.6g} m/s, "
+                f"V_theta = {np.real(inputs['v_theta'][node, station]):.6g} m/s); the inflow angle is undefined")
         # V_t = eta2 V_theta > 0 (Eq. (23)), so the plain arctan is the right branch and complex-step safe.
         phi = np.arctan(u_x / v_t)
         outputs["phi"] = phi

@@ -97,16 +97,23 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
             self.declare_partials(name, wrt, rows=rows, cols=cols)
 
     def _reynolds(self, inputs):
+        for name in ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu"):
+            value = np.real(inputs[name])
+            bad = ~np.isfinite(value)
+            if np.any(bad):
+                node = int(np.flatnonzero(bad)[0])
+                raise om.AnalysisError(f"{self.msginfo}: {name} must be finite for the reference Reynolds "
+                                       f"number, got {float(value[node])!r} at node {node}")
         v_x = inputs["v_axial"]
         v_t = inputs["v_theta_ref"]
         speed = np.sqrt(v_x ** 2 + v_t ** 2)
-        if np.any(np.real(speed) <= 0.0):
+        if np.any(~(np.real(speed) > 0.0)):
             raise om.AnalysisError(
                 f"{self.msginfo}: the reference station has no inflow (v_axial = 0 and rpm = 0); "
                 "give a positive rotor speed")
-        if np.any(np.real(inputs["ref_chord"]) <= 0.0):
-            raise om.AnalysisError(f"{self.msginfo}: ref_chord must be positive, got "
-                                   f"{np.real(inputs['ref_chord'])}")
+        for name in ("ref_chord", "rho", "mu"):
+            if np.any(~(np.real(inputs[name]) > 0.0)):
+                raise om.AnalysisError(f"{self.msginfo}: {name} must be positive, got {np.real(inputs[name])}")
         return speed, inputs["rho"] * speed * inputs["ref_chord"] / inputs["mu"]
 
     def _max_lift_to_drag(self, reynolds):

@@ -65,3 +65,36 @@ def test_figure_of_merit_is_odd_in_thrust():
     prob.run_model()
     np.testing.assert_allclose(prob.get_val("figure_of_merit"), -fm, rtol=1e-14)
     assert np.all(np.isfinite(prob.get_val("figure_of_merit")))
+
+
+def test_hover_efficiency_is_exactly_zero():
+    # eta = V_x T / (Omega Q) with V_x = 0 and P > 0 (Table 2): exactly 0, not NaN.
+    prob = _problem([0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(prob.get_val("efficiency"), 0.0)
+
+
+@pytest.mark.parametrize("name, value, match", [
+    ("dtorque_dr", 0.0, r"torque = 0\.0 at node 1: the shaft power P = Omega Q must be nonzero"),
+    ("rpm", 0.0, r"rpm = 0\.0 at node 1: the rotor speed must be positive"),
+    ("rpm", -100.0, r"rpm = -100\.0 at node 1: the rotor speed must be positive"),
+])
+def test_zero_power_or_rotor_speed_raises(name, value, match):
+    # P = Omega Q = 0 would make eta, FM, C_T ... inf/NaN: report it instead (the component names itself).
+    prob = _problem([0.0, 12.0, 45.0])
+    values = prob.get_val(name).copy()
+    values[1] = value
+    prob.set_val(name, values)
+    with pytest.raises(om.AnalysisError, match=r"'perf' <class RotorPerformanceComp>: rotor performance: " + match):
+        prob.run_model()
+
+
+def test_windmilling_rotor_keeps_finite_signed_metrics():
+    # A windmilling rotor (T < 0, Q < 0 at rpm > 0) extracts power: P < 0, and eta = V_x T / P stays finite
+    # (the BEM analysis reports such states, tests/bem/test_validation.py).
+    prob = _problem([0.0, 12.0, 45.0])
+    prob.set_val("dthrust_dr", -prob.get_val("dthrust_dr"))
+    prob.set_val("dtorque_dr", -prob.get_val("dtorque_dr"))
+    prob.run_model()
+    assert np.all(prob.get_val("power") < 0.0)
+    for name in ("efficiency", "figure_of_merit", "power_coefficient", "blade_loading"):
+        assert np.all(np.isfinite(prob.get_val(name)))

@@ -144,6 +144,41 @@ def test_unloaded_stations_in_hover_have_zero_chord():
     assert_check_totals(data, atol=1e-10, rtol=1e-6)
 
 
+@pytest.mark.parametrize("chord_form", ["thrust", "torque"])
+def test_windmilling_inboard_station_is_reported_with_its_remedy(chord_form):
+    # C_l*/C_d* = 3.69 (cd0 = k = 0.2) at J = 3: the innermost of 12 annuli from r/R = 0.2 (r/R = 0.233,
+    # V_theta = 29.3 m/s) needs V_x < eta2 V_theta C_l*/C_d* ~ 102 m/s but V_x = J n D = 120 m/s (hand).
+    # Both chord forms must stop at the induced velocities (the torque form used to return a windmilling
+    # station with dT/dr < 0, the thrust form a ChordComp error naming no station).
+    def run(hub_radius_ratio):
+        prob = om.Problem(BILDGroup(num_nodes=1, num_radial=NR_REF, polar=AnalyticPolar(cd0=0.2, k=0.2),
+                                    input_mode="advance_ratio", chord_form=chord_form), reports=False)
+        prob.setup()
+        prob.set_val("advance_ratio", [3.0])
+        prob.set_val("ref_chord", [0.1])
+        prob.set_val("hub_radius_ratio", [hub_radius_ratio])
+        prob.run_model()
+        return prob
+
+    with pytest.raises(om.AnalysisError, match=r"(?s)'induced_velocity'.*u_x > V_x.*node 0, station 0.*"
+                                               r"needs V_x < eta2 V_theta C_l\*/C_d\*.*hub_radius_ratio"):
+        run(0.2)
+    # The suggested remedy works: from r/R = 0.35 on, V_theta >= 47 m/s and every station produces thrust.
+    prob = run(0.35)
+    assert np.all(prob.get_val("dthrust_dr") > 0.0) and np.all(prob.get_val("chord") > 0.0)
+
+
+def test_hover_rotor_without_a_loaded_station_raises():
+    # One station at r/R = 0.6 with r_ref/R = 0.25 and a tiny c_ref: lambda < V_theta / (2 L/D) there, so the
+    # station is unloaded (eta2 = 1), T = Q = 0 and the efficiency / figure of merit would be 0/0.
+    prob = om.Problem(BILDGroup(num_nodes=1, num_radial=1, polar=AnalyticPolar(cd0=0.05, k=0.05)), reports=False)
+    prob.setup()
+    prob.set_val("ref_chord", [0.002])
+    prob.set_val("ref_radius_ratio", [0.25])
+    with pytest.raises(om.AnalysisError, match=r"'performance'.*torque = 0\.0 at node 0: the shaft power"):
+        prob.run_model()
+
+
 def test_invalid_options():
     with pytest.raises(ValueError, match="polar"):
         BILDGroup(polar="naca4412")

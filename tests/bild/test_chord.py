@@ -47,3 +47,15 @@ def test_coefficients_and_zero_load():
     np.testing.assert_array_equal(prob.get_val("chord_raw")[:, 0], 0.0)
     np.testing.assert_array_equal(prob.get_val("lift_coefficient"), np.repeat(values["cl_star"][:, None], NR, 1))
     np.testing.assert_array_equal(prob.get_val("drag_coefficient"), np.repeat(values["cd_star"][:, None], NR, 1))
+
+
+@pytest.mark.parametrize("form, phi, rule", [("thrust", 1.6, r"phi < atan\(C_l/C_d\)"),
+                                             ("torque", -0.5, r"phi > -atan\(C_d/C_l\)")])
+def test_nonpositive_force_coefficient_names_node_and_station(form, phi, rule):
+    # Thrust form: C_x = C_l cos(phi) - C_d sin(phi) < 0 beyond phi = atan(C_l/C_d) < pi/2 (1.6 rad is past it);
+    # torque form: C_theta = C_l sin(phi) + C_d cos(phi) < 0 for phi < -atan(C_d/C_l) (~ -0.01 rad).
+    values = _consistent("cruise")
+    values["phi"] = values["phi"].copy()
+    values["phi"][2, 5] = phi
+    with pytest.raises(om.AnalysisError, match=rf"(?s)first at node 2, station 5 .*needs {rule}"):
+        check_component(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), values)

@@ -1,3 +1,4 @@
+import numpy as np
 import openmdao.api as om
 import pytest
 
@@ -25,4 +26,19 @@ def test_invalid_ratios_raise(hub, ref):
     prob.set_val("hub_radius_ratio", hub)
     prob.set_val("ref_radius_ratio", ref)
     with pytest.raises(om.AnalysisError, match="0 < hub_radius_ratio < ref_radius_ratio < 1"):
+        prob.run_model()
+
+
+@pytest.mark.parametrize("name, match", [
+    ("radius", "radius must be positive and finite"),
+    ("hub_radius_ratio", "hub_radius_ratio must be finite"),
+    ("ref_radius_ratio", "ref_radius_ratio must be finite"),
+])
+def test_nan_inputs_raise_naming_the_input(name, match):
+    # NaN compares False with everything, so "x <= 0" checks let it through; the message must name the input.
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("geometry", GeometryComp(num_nodes=2), promotes=["*"])
+    prob.setup()
+    prob.set_val(name, [prob.get_val(name)[0], np.nan])
+    with pytest.raises(om.AnalysisError, match=match):
         prob.run_model()

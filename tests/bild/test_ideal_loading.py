@@ -58,3 +58,11 @@ def test_assumption_3_violations_raise(name, value, rule):
     values[name][1] = value  # node 1 has V_x = 30 m/s
     with pytest.raises(om.AnalysisError, match=rf"Assumption 3 violated at node 1 \({rule} fails"):
         run(values, NN)
+
+
+def test_overloaded_reference_station_says_what_to_change():
+    values = reference_values("cruise")
+    values["u_theta_ref"] = values["u_theta_ref"].copy()
+    values["u_theta_ref"][1] = 1.5 * values["v_theta_ref"][1]
+    with pytest.raises(om.AnalysisError, match=r"reduce ref_chord \(reference solidity\) or the advance ratio"):
+        run(values, NN)

@@ -1,4 +1,6 @@
 import numpy as np
+import openmdao.api as om
+import pytest
 
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from tests.bild.conftest import NN, NR, check_component, state
@@ -31,3 +33,60 @@ def test_unloaded_station_in_hover():
     prob = check_component(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)
     assert np.max(np.abs(prob.get_val("u_x"))) < 1e-12
     np.testing.assert_array_equal(prob.get_val("u_theta"), 0.0)
+
+
+def _eq25_sides(prob, values):
+    """Both sides of Eq. (25), 2 (u_x - V_x) / u_theta = C_x / C_theta (in velocity form)."""
+    u_x, u_t = prob.get_val("u_x"), prob.get_val("u_theta")
+    v_x, v_t = values["v_axial"][:, None], values["v_theta"]
+    cl, cd = values["cl_star"][:, None], values["cd_star"][:, None]
+    lhs = 2.0 * (u_x - v_x) / u_t
+    rhs = (cl * (v_t - u_t / 2) - cd * u_x) / (cl * u_x + cd * (v_t - u_t / 2))
+    return lhs, rhs
+
+
+@pytest.mark.parametrize("gap", [1e-10, 1e-13])
+def test_no_cancellation_near_unloaded_hover(gap):
+    # Hover, eta2 -> 1: b = -V_theta C_d/(2 C_l) < 0 and c -> 0, where b + sqrt(b**2 + c) loses ~|b|/u_x
+    # digits (measured: Eq. (25) off by 5e-8 relative at 1 - eta2 = 1e-13); the stable form keeps it exact.
+    values = state("hover")
+    values["eta2"] = np.full((NN, NR), 1.0 - gap)
+    prob = check_component(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)
+    lhs, rhs = _eq25_sides(prob, values)
+    np.testing.assert_allclose(lhs, rhs, rtol=1e-12)
+    assert np.all(prob.get_val("u_x") > 0.0)
+
+
+def _cruise_at_ratio(ratio, node=1, station=2):
+    """Cruise inputs where V_x = ratio * eta2 V_theta C_l/C_d at one station (all others far inside the rule)."""
+    values = state("cruise")
+    v_t = values["v_theta"].copy()
+    # Put the station's V_theta exactly where the rule V_x < eta2 V_theta C_l/C_d is met with the given ratio.
+    lift_to_drag = values["cl_star"][node] / values["cd_star"][node]
+    v_t[node, station] = values["v_axial"][node] / (ratio * values["eta2"][node, station] * lift_to_drag)
+    values["v_theta"] = v_t
+    return values
+
+
+def test_positive_local_thrust_boundary_is_exact():
+    # Hand derivation from Eq. (25): u_x - V_x has the sign of (1 - eta2)(eta2 V_theta - V_x C_d/C_l).
+    # Just inside the boundary the station is loaded (u_x > V_x) ...
+    values = _cruise_at_ratio(1.0 - 1e-9)
+    prob = check_component(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)
+    assert prob.get_val("u_x")[1, 2] > values["v_axial"][1]
+    # ... just outside it the station would windmill, and the component says where and what to change.
+    values = _cruise_at_ratio(1.0 + 1e-9)
+    with pytest.raises(om.AnalysisError, match=r"(?s)u_x > V_x.*node 1, station 2.*"
+                                               r"needs V_x < eta2 V_theta C_l\*/C_d\*.*hub_radius_ratio.*"
+                                               r"advance ratio.*higher maximum L/D"):
+        check_component(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)
+
+
+def test_low_lift_to_drag_inboard_station_raises():
+    # C_l/C_d = 0.5 at node 0 (V_x = 20 m/s): the rule V_x < eta2 V_theta C_l/C_d fails at the innermost
+    # station (V_theta = 32.3 m/s, eta2 < 0.98: limit < 15.8 m/s) and holds at the tip (118 m/s: limit > 53 m/s).
+    values = state("cruise")
+    values["cd_star"] = values["cd_star"].copy()
+    values["cd_star"][0] = 2.0 * values["cl_star"][0]
+    with pytest.raises(om.AnalysisError, match=r"first at node 0, station 0 \(V_theta = "):
+        check_component(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)

@@ -42,3 +42,23 @@ def test_nonpositive_chord_raises():
     values["ref_chord"] = np.array([0.1, 0.0, 0.1])
     with pytest.raises(om.AnalysisError, match="ref_chord must be positive"):
         check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+
+
+@pytest.mark.parametrize("name", ["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"])
+def test_nonfinite_reynolds_inputs_raise_naming_the_input(name):
+    # Re_ref = rho W0 c_ref / mu: a NaN or inf in any factor must be reported by name, not passed to the polar.
+    values = state("cruise")
+    values[name] = values[name].copy()
+    values[name][2] = np.nan if name != "mu" else np.inf
+    with pytest.raises(om.AnalysisError, match=rf"{name} must be finite for the reference Reynolds number, "
+                                               r"got .* at node 2"):
+        check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+
+
+@pytest.mark.parametrize("name", ["rho", "mu"])
+def test_nonpositive_air_properties_raise(name):
+    values = state("cruise")
+    values[name] = values[name].copy()
+    values[name][0] = 0.0
+    with pytest.raises(om.AnalysisError, match=f"{name} must be positive"):
+        check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
