@@ -1,0 +1,189 @@
+"""The science of the verification sweep: batched BILD and the per-case BEM optimisation (paper Sec. 5.1).
+
+Plug these into :func:`~bild_mdo.verification.runner.run_sweep`::
+
+    run_sweep(spec, db_path, bild_batch, optimize_case, workers=2)
+
+:func:`bild_batch` designs every case with one vectorised :class:`~bild_mdo.bild.BILDGroup`
+run; :func:`optimize_case` solves the same energy-loss minimisation with the
+full BEM model and a gradient-based optimiser, warm-started from the BILD
+geometry, with BILD's thrust as the equality constraint (as in the paper).
+Both are module-level functions, so they pickle to worker processes.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.airfoil.builtin import get_polar
+from bild_mdo.bild.bild_group import BILDGroup
+from bild_mdo.optimization.problem import build_optimization_problem, optimize_rotor
+from bild_mdo.verification.store import RESULT_QUANTITIES
+
+#: Inputs that must be equal for cases to share one batched BILD model.
+_MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
+
+# Problems already set up in this process, by configuration: setting one up costs more than a
+# warm-started optimisation, and every case of a sweep has the same configuration.
+_PROBLEMS = {}
+
+
+def _group_cases(cases):
+    groups = {}
+    for index, case in enumerate(cases):
+        key = tuple(case.inputs[k] for k in _MODEL_KEYS)
+        groups.setdefault(key, []).append(index)
+    return groups
+
+
+def _bild_problem(num_nodes, num_radial, num_blades, airfoil):
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("bild", BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades,
+                                               polar=get_polar(airfoil)),
+                             promotes=["*"])
+    prob.setup()
+    return prob
+
+
+def _set_bild_inputs(prob, cases):
+    def column(key):
+        return np.array([float(case.inputs[key]) for case in cases])
+
+    radius = column("radius")
+    prob.set_val("v_axial", column("v_axial"), units="m/s")
+    prob.set_val("rpm", column("rpm"), units="rpm")
+    prob.set_val("radius", radius, units="m")
+    prob.set_val("hub_radius_ratio", column("hub_radius") / radius)
+    prob.set_val("ref_radius_ratio", column("reference_radius") / radius)
+    prob.set_val("ref_chord", column("reference_chord"), units="m")
+    prob.set_val("altitude", column("altitude"), units="m")
+
+
+def bild_batch(cases):
+    """BILD designs of many cases in one vectorised run (``num_nodes = len(cases)``).
+
+    Cases that differ in the number of stations, blades or airfoil are run
+    as separate batches (one per combination; the sweep has one).
+
+    Parameters
+    ----------
+    cases : list of Case
+        Sweep cases (:class:`~bild_mdo.verification.cases.Case`).
+
+    Returns
+    -------
+    list of dict
+        One per case, in order, with the keys of
+        :data:`~bild_mdo.verification.store.RESULT_KEYS` (``energy_loss`` in
+        W, ``chord`` in m and ``twist`` in rad at the stations) and
+        ``thrust`` (N), the thrust target of the optimisation.  ``run_time``
+        is left to the runner (batch wall time divided by the number of
+        cases).  A batch whose model raises marks its cases not converged with
+        the error text.
+    """
+    results = [None] * len(cases)
+    for (num_radial, num_blades, airfoil), indices in _group_cases(cases).items():
+        batch = [cases[i] for i in indices]
+        try:
+            prob = _bild_problem(len(batch), int(num_radial), int(num_blades), airfoil)
+            _set_bild_inputs(prob, batch)
+            prob.run_model()
+        except (om.AnalysisError, ValueError) as exc:
+            for i in indices:
+                results[i] = {"converged": False, "error": f"BILD failed for this batch: {exc}"}
+            continue
+        values = {name: prob.get_val(name) for name in RESULT_QUANTITIES + ("thrust",)}
+        chord = prob.get_val("chord", units="m")
+        twist = prob.get_val("twist", units="rad")
+        for k, i in enumerate(indices):
+            row = {name: float(values[name][k]) for name in RESULT_QUANTITIES}
+            finite = all(np.isfinite(v) for v in row.values()) and np.all(np.isfinite(chord[k]))
+            row.update(chord=chord[k].copy(), twist=twist[k].copy(), thrust=float(values["thrust"][k]),
+                       converged=bool(finite))
+            if not finite:
+                row["error"] = "BILD returned non-finite values"
+            results[i] = row
+    return results
+
+
+def time_single_bild_design(case, repeats=20):
+    """Wall time of one BILD design (``num_nodes = 1``), model run only, best of ``repeats``.
+
+    Parameters
+    ----------
+    case : Case
+        A sweep case.
+    repeats : int
+        Number of timed runs.
+
+    Returns
+    -------
+    float
+        Seconds per ``run_model`` of a set-up single-design problem.
+    """
+    inputs = case.inputs
+    prob = _bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
+    _set_bild_inputs(prob, [case])
+    prob.run_model()
+    best = np.inf
+    for _ in range(repeats):
+        start = time.perf_counter()
+        prob.run_model()
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def _cached_problem(inputs, optimizer, parameterization, tol):
+    key = (optimizer, parameterization, tol, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
+    prob = _PROBLEMS.get(key)
+    if prob is None:
+        prob = build_optimization_problem(optimizer=optimizer, parameterization=parameterization, tol=tol,
+                                          num_radial=int(inputs["num_radial"]),
+                                          num_blades=int(inputs["num_blades"]), polar=inputs["airfoil"])
+        _PROBLEMS[key] = prob
+    return prob
+
+
+def optimize_case(case, bild_result, optimizer=None, initial="bild", parameterization="stations", tol=None,
+                  restarts=1):
+    """BEM optimisation of one sweep case with BILD's thrust as the constraint (paper Sec. 5.1).
+
+    Parameters
+    ----------
+    case : Case
+        The sweep case.
+    bild_result : dict
+        This case's entry of :func:`bild_batch` (``thrust``, ``chord``, ``twist``).
+    optimizer : {'slsqp', 'ipopt', 'snopt'}, optional
+        Default ``case.optimizer``.
+    initial : {'bild', 'linear'}
+        Warm start from the BILD geometry or the linear cold start.
+    parameterization : {'stations', 'bspline'}
+        Design variables per station (paper) or B-spline control points.
+    tol : float, optional
+        Optimiser tolerance (default of :func:`~bild_mdo.optimization.problem.build_optimization_problem`).
+    restarts : int
+        Restarts from where a failed run stopped (see
+        :func:`~bild_mdo.optimization.problem.optimize_rotor`).
+
+    Returns
+    -------
+    dict
+        The keys of :data:`~bild_mdo.verification.store.RESULT_KEYS` at the
+        optimum, ``converged``, ``status`` and ``iterations``.  The run time
+        is left to the runner (wall time of this call, including the one-off
+        problem set-up of a worker's first case).
+    """
+    inputs = case.inputs
+    optimizer = case.optimizer if optimizer is None else optimizer
+    prob = _cached_problem(inputs, optimizer, parameterization, tol)
+    result = optimize_rotor(inputs["v_axial"], inputs["rpm"], inputs["radius"], inputs["hub_radius"],
+                            bild_result["thrust"], inputs["altitude"], problem=prob, restarts=restarts, initial=initial,
+                            bild_chord=bild_result.get("chord"), bild_twist=bild_result.get("twist"),
+                            reference_chord=inputs["reference_chord"])
+    row = {name: result.performance[name] for name in RESULT_QUANTITIES}
+    row.update(chord=result.chord, twist=result.twist, converged=result.converged, status=result.status,
+               iterations=result.iterations)
+    return row
