@@ -13,8 +13,11 @@ from bild_mdo.airfoil import AnalyticPolar, Polar, TabulatedPolar, get_polar, na
 from bild_mdo.atmosphere import AtmosphereComp, isa
 from bild_mdo.bem import BEMAnalysisGroup, BEMResult, analyze_rotor
 from bild_mdo.bild import BILDGroup
+from bild_mdo.design import DesignResult, design_rotor
+from bild_mdo.off_design import OffDesignResult, off_design_sweep
 
 __all__ = [
-    "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BILDGroup", "Polar",
+    "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BILDGroup", "DesignResult",
+    "OffDesignResult", "Polar", "design_rotor", "off_design_sweep",
     "TabulatedPolar", "analyze_rotor", "get_polar", "isa", "naca4412", "__version__",
 ]

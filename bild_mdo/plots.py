@@ -14,10 +14,15 @@ figure, ready for ``plt.show()`` or a notebook.
 :func:`plot_performance_curves`
     Thrust, power, efficiency (or figure of merit) and the coefficients of an
     :class:`~bild_mdo.off_design.OffDesignResult` against J or rpm.
+:func:`plot_run_times`, :func:`plot_parity`
+    The verification sweep's timing scatter (paper Fig. 4) and parity plots
+    (Fig. 5), from :mod:`bild_mdo.verification.figures`.
 """
 from __future__ import annotations
 
 import numpy as np
+
+from bild_mdo.verification.figures import plot_parity, plot_run_times  # re-exported: one place for all figures
 
 PLOT_MISSING = "plots need matplotlib: pip install bild-mdo[plot]"
 
