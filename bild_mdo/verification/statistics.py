@@ -91,6 +91,11 @@ class Table3:
         Converged cases of each method over all stored cases (%).
     mean_run_time_bild, mean_run_time_opt : float
         Mean run time per case over the converged cases (s); NaN without any.
+    optimality : OptimalityCheck or None
+        The check that no optimum is worse than BILD's geometry trimmed to the
+        same thrust (:func:`~bild_mdo.verification.optimality.optimality_check`);
+        not computed by :func:`table3` (it runs BEM analyses), set by the caller.
+        When set, :func:`format_table3` prints its summary under the table.
     """
 
     quantities: dict
@@ -100,6 +105,7 @@ class Table3:
     percent_converged_opt: float
     mean_run_time_bild: float
     mean_run_time_opt: float
+    optimality: object = None
 
     @property
     def speedup(self):
@@ -248,4 +254,5 @@ def format_table3(table):
         f"Table 3 reproduction: {table.num_cases} cases, {table.num_converged} with both methods converged "
         f"(statistics over those; eta over J > 0, FM over J = 0); speed-up {_fmt_number(table.speedup, 1)}x"
     )
-    return "\n".join([title, rule, render(header), rule] + [render(line) for line in lines] + [rule])
+    footer = [] if table.optimality is None else [table.optimality.summary()]
+    return "\n".join([title, rule, render(header), rule] + [render(line) for line in lines] + [rule] + footer)

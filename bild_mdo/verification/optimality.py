@@ -1,0 +1,377 @@
+"""Is the optimum an optimum?  The BEM optimum against the BILD geometry trimmed to the same thrust.
+
+BILD's reported energy loss is a momentum-theory value with the airfoil's
+maximum-L/D point at the reference Reynolds number; evaluated in the full BEM
+model (local Reynolds numbers, Prandtl losses) the BILD geometry produces a
+slightly different thrust (up to about 2 % over the sweep).  So BILD's reported
+E is not a feasible point of the optimisation, and comparing the optimum with
+it says nothing about optimality.  The fair comparison, and the paper's intent
+(the optimiser solves the same problem, Sec. 5.1), is:
+
+1. take BILD's chord and twist;
+2. trim them in the BEM model to the optimisation's thrust target
+   ``T* = T_BILD`` with one collective-pitch offset per case (a uniform twist
+   change), which is a feasible design of the optimisation problem;
+3. the optimum's energy loss must not exceed that design's, within a
+   relative tolerance.
+
+:func:`trimmed_bild_energy_loss` does step 2 for all cases in one vectorised
+BEM analysis per iteration; :func:`optimality_check` does step 3 and sums up.
+The BEM set-up is the one the optimisation uses (``loss_model='tip_hub'``,
+ISA at the case's altitude, the built-in polar named by the case) at the
+stations BILD designs at: the midpoints of ``num_radial`` equal annuli from hub
+to tip, which are also :func:`~bild_mdo.bem.analysis.analyze_rotor`'s default
+stations.
+
+The optimum meets its thrust constraint to ``|T/T* - 1| <= 1e-6``
+(:data:`~bild_mdo.optimization.problem.THRUST_TOLERANCE`); E changes by at most
+about twice that relative amount, far below the default tolerance of 1e-4.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from bild_mdo.airfoil.builtin import get_polar
+from bild_mdo.atmosphere import isa
+from bild_mdo.bem.analysis import analyze_rotor
+
+#: Loss model of the optimisation problem the optimum comes from.
+LOSS_MODEL = "tip_hub"
+
+#: Default relative tolerance of the optimality check (0.01 %, the acceptance criterion).
+DEFAULT_TOLERANCE = 1.0e-4
+
+_CASE_KEYS = ("v_axial", "rpm", "radius", "hub_radius", "altitude")
+_MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
+
+
+@dataclasses.dataclass
+class BildTrim:
+    """BILD geometries trimmed to their own thrust in the BEM model (:func:`trimmed_bild_energy_loss`).
+
+    All arrays have shape ``(n,)``, one entry per row, in the order of the rows.
+
+    Attributes
+    ----------
+    case_ids : ndarray of int
+        Case ids of the rows.
+    energy_loss : ndarray
+        BEM rate of energy loss of the trimmed BILD design (W).
+    thrust_residual : ndarray
+        ``T/T* - 1`` of the trimmed design (-).
+    pitch_offset : ndarray
+        Collective-pitch offset added to BILD's twist (rad).
+    untrimmed_thrust_error : ndarray
+        ``T/T* - 1`` of BILD's geometry as designed, in the BEM model (-).
+    converged : ndarray of bool
+        ``|thrust_residual| <= tol``.
+    iterations : int
+        BEM analyses per configuration batch after the first (the largest batch count).
+    """
+
+    case_ids: np.ndarray
+    energy_loss: np.ndarray
+    thrust_residual: np.ndarray
+    pitch_offset: np.ndarray
+    untrimmed_thrust_error: np.ndarray
+    converged: np.ndarray
+    iterations: int
+
+
+def _row_text(row):
+    return f"case {row.get('case_id')}"
+
+
+def _thrust_target(rows):
+    """``T* = C_T rho n^2 D^4`` of BILD's design (N), rho from the ISA at each case's altitude."""
+    c_t = np.array([row["bild_thrust_coefficient"] for row in rows], dtype=float)
+    rho = np.asarray(isa(np.array([row["altitude"] for row in rows], dtype=float)).rho, dtype=float)
+    n = np.array([row["rpm"] for row in rows], dtype=float) / 60.0
+    diameter = 2.0 * np.array([row["radius"] for row in rows], dtype=float)
+    return c_t * rho * n**2 * diameter**4
+
+
+def _check_rows(rows):
+    for row in rows:
+        missing = [k for k in ("bild_chord", "bild_twist", "bild_thrust_coefficient") + _CASE_KEYS + _MODEL_KEYS
+                   if row.get(k) is None]
+        if missing:
+            raise ValueError(f"{_row_text(row)}: the BILD trim needs {missing}; pass only cases whose BILD "
+                             "design converged (bild_converged)")
+        nr = int(row["num_radial"])
+        for name in ("bild_chord", "bild_twist"):
+            values = np.asarray(row[name], dtype=float)
+            if values.shape != (nr,) or not np.all(np.isfinite(values)):
+                raise ValueError(f"{_row_text(row)}: {name} must be {nr} finite values at the sweep's stations "
+                                 f"(num_radial = {nr}), got shape {values.shape}")
+        c_t = float(row["bild_thrust_coefficient"])
+        if not (math.isfinite(c_t) and c_t > 0.0):
+            raise ValueError(f"{_row_text(row)}: BILD's thrust coefficient must be positive, got {c_t!r}")
+
+
+def _trim_batch(rows, tol, max_iter, first_step, max_step):
+    """Safeguarded secant iteration on the pitch offset of every row at once (one configuration)."""
+    _, num_blades, airfoil = (rows[0][k] for k in _MODEL_KEYS)
+    polar = get_polar(airfoil)
+    chord = np.array([row["bild_chord"] for row in rows], dtype=float)
+    twist = np.array([row["bild_twist"] for row in rows], dtype=float)
+    case = {k: np.array([row[k] for row in rows], dtype=float) for k in _CASE_KEYS}
+    target = _thrust_target(rows)
+
+    def analyse(offset):
+        result = analyze_rotor(chord, twist + offset[:, None], case["radius"], case["hub_radius"], case["rpm"],
+                               case["v_axial"], int(num_blades), polar, altitude=case["altitude"],
+                               loss_model=LOSS_MODEL)
+        return np.asarray(result.thrust) / target - 1.0, np.asarray(result.energy_loss)
+
+    size = len(rows)
+    x = np.zeros(size)
+    f, energy = analyse(x)
+    untrimmed = f.copy()
+    x_prev, f_prev = None, None
+    # Thrust rises with collective pitch while the sections are not stalled; the first slope
+    # comes from a small probe step, later ones from the last two iterates.
+    slope = np.full(size, np.nan)
+    iterations = 0
+    while np.any(np.abs(f) > tol) and iterations < max_iter:
+        active = np.abs(f) > tol
+        if x_prev is None:
+            step = np.where(active, -np.sign(f) * first_step, 0.0)
+        else:
+            dx = x - x_prev
+            with np.errstate(divide="ignore", invalid="ignore"):
+                secant = (f - f_prev) / dx
+            usable = (dx != 0.0) & np.isfinite(secant) & (secant > 0.0)
+            slope = np.where(usable, secant, slope)
+            step = np.where(active & np.isfinite(slope), -f / slope, 0.0)
+            # No usable slope yet (the probe did not move T): probe again.
+            step = np.where(active & ~np.isfinite(slope), -np.sign(f) * first_step, step)
+        step = np.clip(step, -max_step, max_step)
+        moved = step != 0.0
+        if x_prev is None:
+            x_prev, f_prev = x.copy(), f.copy()
+        x_prev, f_prev = np.where(moved, x, x_prev), np.where(moved, f, f_prev)
+        x = x + step
+        f, energy = analyse(x)
+        iterations += 1
+    return dict(energy_loss=energy, thrust_residual=f, pitch_offset=x, untrimmed_thrust_error=untrimmed,
+                converged=np.abs(f) <= tol, iterations=iterations)
+
+
+def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, max_step=np.radians(2.0)):
+    """Trim every row's BILD geometry to its own thrust in the BEM model; return the BEM energy loss.
+
+    For each case the twist is shifted uniformly (collective pitch) until
+    the BEM thrust equals ``T* = T_BILD = C_T rho n^2 D^4`` (C_T as BILD
+    reported it, rho from the ISA at the case's altitude, n = rpm / 60,
+    D = 2 R): the optimisation's thrust target.  All cases of one
+    configuration (stations, blades, airfoil; the sweep has one) are solved
+    together: every iteration is one vectorised
+    :func:`~bild_mdo.bem.analysis.analyze_rotor` call with ``num_nodes`` equal to
+    the number of cases, and the pitch offsets follow a secant iteration per
+    case (a probe step of ``first_step`` first), with each step limited to
+    ``max_step`` and the last positive slope kept where a secant is not.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Results-store rows (:meth:`~bild_mdo.verification.store.ResultsStore.rows`)
+        with BILD's design: ``bild_chord`` and ``bild_twist`` (``num_radial``
+        values, m and rad, at the midpoints of equal annuli),
+        ``bild_thrust_coefficient`` and the case inputs.
+    tol : float
+        Tolerance on ``|T/T* - 1|``.
+    max_iter : int
+        BEM analyses after the first.  Cases not trimmed by then are returned
+        with ``converged`` False (no exception).
+    first_step, max_step : float
+        Probe step and largest step of the pitch offset (rad).
+
+    Returns
+    -------
+    BildTrim
+        In the order of ``rows``.
+
+    Raises
+    ------
+    ValueError
+        If a row lacks BILD's design or it is not at ``num_radial`` stations.
+    openmdao.api.AnalysisError
+        If a BEM inflow solve fails (outside the valid domain).
+    """
+    rows = list(rows)
+    _check_rows(rows)
+    size = len(rows)
+    out = {name: np.full(size, np.nan) for name in ("energy_loss", "thrust_residual", "pitch_offset",
+                                                    "untrimmed_thrust_error")}
+    converged = np.zeros(size, dtype=bool)
+    iterations = 0
+    groups = {}
+    for index, row in enumerate(rows):
+        groups.setdefault(tuple(row[k] for k in _MODEL_KEYS), []).append(index)
+    for indices in groups.values():
+        batch = _trim_batch([rows[i] for i in indices], tol, max_iter, first_step, max_step)
+        for name in out:
+            out[name][indices] = batch[name]
+        converged[indices] = batch["converged"]
+        iterations = max(iterations, batch["iterations"])
+    return BildTrim(case_ids=np.array([int(row["case_id"]) for row in rows], dtype=int), converged=converged,
+                    iterations=iterations, **out)
+
+
+@dataclasses.dataclass
+class OptimalityCheck:
+    """Summary of :func:`optimality_check`.
+
+    Relative margins are ``(E_opt - E_trim) / E_trim`` with ``E_trim`` the BEM
+    energy loss of BILD's geometry trimmed to ``T*``: negative where the
+    optimum is better, as it must be.
+
+    Attributes
+    ----------
+    tolerance : float
+        Relative tolerance of the check.
+    num_cases : int
+        Cases compared (BILD and optimisation converged, trim converged).
+    num_skipped : int
+        Rows left out because BILD or the optimisation did not converge.
+    trim_failed_ids : list of int
+        Cases whose trim did not converge (not compared).
+    violations : list of tuple
+        ``(case_id, margin)`` where ``margin > tolerance``, worst first.
+    max_margin, mean_margin : float
+        Largest and mean relative margin (-); NaN without cases.
+    worst_case_id : int or None
+        Case of ``max_margin``.
+    bild_reported_mean_abs, bild_reported_max_abs : float
+        Mean and largest ``|E_BILD - E_trim| / E_trim``: BILD's reported
+        (momentum-theory) E against its own geometry's trimmed BEM E (-).
+    max_untrimmed_thrust_error : float
+        Largest ``|T/T* - 1|`` of BILD's geometry in the BEM model before trimming (-).
+    max_pitch_offset : float
+        Largest ``|offset|`` of the trim (rad).
+    max_trim_residual : float
+        Largest ``|T/T* - 1|`` after the trim over the compared cases (-).
+    """
+
+    tolerance: float
+    num_cases: int
+    num_skipped: int
+    trim_failed_ids: list
+    violations: list
+    max_margin: float
+    mean_margin: float
+    worst_case_id: object
+    bild_reported_mean_abs: float
+    bild_reported_max_abs: float
+    max_untrimmed_thrust_error: float
+    max_pitch_offset: float
+    max_trim_residual: float
+
+    @property
+    def num_violations(self):
+        """Number of cases where the optimum is worse than the trimmed BILD design beyond the tolerance."""
+        return len(self.violations)
+
+    @property
+    def passed(self):
+        """True when no case violates the check and every trim converged."""
+        return not self.violations and not self.trim_failed_ids
+
+    def summary(self):
+        """Text for the verification report (two to four lines)."""
+        if self.num_cases == 0:
+            return (f"Optimum is an optimum: no case to check ({self.num_skipped} without both methods converged, "
+                    f"{len(self.trim_failed_ids)} trims failed).")
+        lines = [
+            f"Optimum is an optimum: {self.num_violations} of {self.num_cases} cases have E_opt > E_BILD,trimmed "
+            f"(1 + {self.tolerance:g}); (E_opt - E_BILD,trimmed)/E_BILD,trimmed worst "
+            f"{100.0 * self.max_margin:+.4f} % (case {self.worst_case_id}), mean {100.0 * self.mean_margin:+.4f} %.",
+            f"  E_BILD,trimmed: BILD's chord and twist in the BEM model, collective pitch trimmed to T* = T_BILD "
+            f"(|offset| <= {np.degrees(self.max_pitch_offset):.3f} deg, |T/T* - 1| before "
+            f"<= {100.0 * self.max_untrimmed_thrust_error:.3f} %, after <= {self.max_trim_residual:.1e}).",
+            f"  BILD's reported E vs E_BILD,trimmed: mean |diff| {100.0 * self.bild_reported_mean_abs:.3f} %, "
+            f"max {100.0 * self.bild_reported_max_abs:.3f} %.",
+        ]
+        if self.violations:
+            shown = ", ".join(f"{cid} ({100.0 * m:+.4f} %)" for cid, m in self.violations[:10])
+            more = "" if len(self.violations) <= 10 else f" and {len(self.violations) - 10} more"
+            lines.append(f"  Violations (case, margin): {shown}{more}.")
+        if self.trim_failed_ids:
+            lines.append(f"  Trim did not converge (not compared): cases {self.trim_failed_ids[:10]}"
+                         f"{'' if len(self.trim_failed_ids) <= 10 else ' ...'}.")
+        return "\n".join(lines)
+
+
+def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None):
+    """Check that no optimum has a higher energy loss than BILD's design trimmed to the same thrust.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Results-store rows; only cases where BILD and the optimisation both
+        converged are compared.
+    tolerance : float
+        Relative tolerance: a case violates the check when
+        ``E_opt > E_trim (1 + tolerance)``.  Default 1e-4 (0.01 %).
+    trim : BildTrim, optional
+        The trim of exactly the compared rows, to reuse one already computed;
+        computed with :func:`trimmed_bild_energy_loss` when omitted.
+
+    Returns
+    -------
+    OptimalityCheck
+
+    Raises
+    ------
+    ValueError
+        If a compared row lacks its optimum's energy loss or BILD's design.
+    openmdao.api.AnalysisError
+        If a BEM inflow solve of the trim fails.
+    """
+    rows = list(rows)
+    compared = [row for row in rows if row["converged"] and row["bild_converged"]]
+    for row in compared:
+        value = row.get("opt_energy_loss")
+        if value is None or not math.isfinite(float(value)):
+            raise ValueError(f"{_row_text(row)}: converged optimum without a finite energy loss")
+    if trim is None:
+        trim = trimmed_bild_energy_loss(compared)
+    elif len(trim.case_ids) != len(compared) or any(
+            int(a) != int(b["case_id"]) for a, b in zip(trim.case_ids, compared)):
+        raise ValueError("trim must belong to the converged rows, in the same order")
+    ok = np.asarray(trim.converged, dtype=bool)
+    ids = np.asarray(trim.case_ids, dtype=int)
+    e_opt = np.array([row["opt_energy_loss"] for row in compared], dtype=float)[ok]
+    e_bild = np.array([math.nan if row["bild_energy_loss"] is None else row["bild_energy_loss"]
+                       for row in compared], dtype=float)[ok]
+    e_trim = trim.energy_loss[ok]
+    margin = (e_opt - e_trim) / e_trim
+    reported = np.abs(e_bild - e_trim) / e_trim
+    reported = reported[np.isfinite(reported)]
+    bad = margin > tolerance
+    order = np.argsort(-margin[bad])
+    violations = [(int(cid), float(m)) for cid, m in zip(ids[ok][bad][order], margin[bad][order])]
+    num = int(ok.sum())
+
+    def stat(fn, values):
+        return float(fn(values)) if values.size else math.nan
+
+    return OptimalityCheck(
+        tolerance=float(tolerance),
+        num_cases=num,
+        num_skipped=len(rows) - len(compared),
+        trim_failed_ids=[int(cid) for cid in ids[~ok]],
+        violations=violations,
+        max_margin=stat(np.max, margin),
+        mean_margin=stat(np.mean, margin),
+        worst_case_id=int(ids[ok][np.argmax(margin)]) if num else None,
+        bild_reported_mean_abs=stat(np.mean, reported),
+        bild_reported_max_abs=stat(np.max, reported),
+        max_untrimmed_thrust_error=stat(np.max, np.abs(trim.untrimmed_thrust_error[ok])),
+        max_pitch_offset=stat(np.max, np.abs(trim.pitch_offset[ok])),
+        max_trim_residual=stat(np.max, np.abs(trim.thrust_residual[ok])),
+    )
