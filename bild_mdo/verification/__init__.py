@@ -6,6 +6,7 @@ and the per-case optimisation function as arguments.
 """
 from .cases import Case, SweepSpec
 from .executors import run_tasks
+from .optimality import BildTrim, OptimalityCheck, optimality_check, trimmed_bild_energy_loss
 from .progress import ProgressBar
 from .runner import (
     SweepResult,
@@ -22,6 +23,10 @@ __all__ = [
     "Case",
     "SweepSpec",
     "run_tasks",
+    "BildTrim",
+    "OptimalityCheck",
+    "optimality_check",
+    "trimmed_bild_energy_loss",
     "ProgressBar",
     "SweepResult",
     "add_verify_arguments",
