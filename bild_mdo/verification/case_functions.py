@@ -17,8 +17,7 @@ import time
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.airfoil.builtin import get_polar
-from bild_mdo.bild.bild_group import BILDGroup
+from bild_mdo.design import bild_problem
 from bild_mdo.optimization.problem import build_optimization_problem, optimize_rotor
 from bild_mdo.verification.store import RESULT_QUANTITIES
 
@@ -36,15 +35,6 @@ def _group_cases(cases):
         key = tuple(case.inputs[k] for k in _MODEL_KEYS)
         groups.setdefault(key, []).append(index)
     return groups
-
-
-def _bild_problem(num_nodes, num_radial, num_blades, airfoil):
-    prob = om.Problem(reports=False)
-    prob.model.add_subsystem("bild", BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades,
-                                               polar=get_polar(airfoil)),
-                             promotes=["*"])
-    prob.setup()
-    return prob
 
 
 def _set_bild_inputs(prob, cases):
@@ -87,7 +77,7 @@ def bild_batch(cases):
     for (num_radial, num_blades, airfoil), indices in _group_cases(cases).items():
         batch = [cases[i] for i in indices]
         try:
-            prob = _bild_problem(len(batch), int(num_radial), int(num_blades), airfoil)
+            prob = bild_problem(len(batch), int(num_radial), int(num_blades), airfoil)
             _set_bild_inputs(prob, batch)
             prob.run_model()
         except (om.AnalysisError, ValueError) as exc:
@@ -124,7 +114,7 @@ def time_single_bild_design(case, repeats=20):
         Seconds per ``run_model`` of a set-up single-design problem.
     """
     inputs = case.inputs
-    prob = _bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
+    prob = bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
     _set_bild_inputs(prob, [case])
     prob.run_model()
     best = np.inf
