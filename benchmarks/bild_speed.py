@@ -14,7 +14,7 @@ and ``num_radial = 30``:
 * the time of ``compute_totals`` of one design: thrust, torque, chord and twist
   with respect to every input (v_axial, rpm, radius, hub and reference radius
   ratios, ref_chord, altitude);
-* the wall time of :func:`bild_mdo.design.design_rotor` for one design once
+* the wall time of :func:`bild_mdo.results.design.design_rotor` for one design once
   its model is cached (the Python API's overhead on top of ``run_model``).
 
 Nothing is asserted; on a shared machine, repeat the run.
@@ -27,7 +27,7 @@ import openmdao.api as om
 
 from bild_mdo.airfoil import naca4412
 from bild_mdo.bild import BILDGroup
-from bild_mdo.design import design_rotor
+from bild_mdo.results.design import design_rotor
 
 NUM_RADIAL = 30
 LEVELS = 10

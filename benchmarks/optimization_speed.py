@@ -17,7 +17,8 @@ import warnings
 
 import numpy as np
 
-from bild_mdo.optimization.problem import build_optimization_problem, optimize_rotor
+from bild_mdo.optimization.problem import build_optimization_problem
+from bild_mdo.optimization.run import optimize_rotor
 from bild_mdo.verification.case_functions import bild_batch, time_single_bild_design
 from bild_mdo.verification.cases import SweepSpec
 

@@ -5,7 +5,10 @@ using blade element momentum theory", AIAA Journal 61(9), 2023.
 
 The public API is re-exported here::
 
-    from bild_mdo import BILDGroup, BEMAnalysisGroup, analyze_rotor, naca4412
+    from bild_mdo import BILDGroup, BEMAnalysisGroup, analyze_rotor, design_rotor, naca4412
+
+Importing bild_mdo needs no optional package (cyipopt, matplotlib, dask):
+:class:`IpoptDriver` imports cyipopt only when a driver is made.
 """
 __version__ = "0.1.0"
 
@@ -13,11 +16,12 @@ from bild_mdo.airfoil import AnalyticPolar, Polar, TabulatedPolar, get_polar, na
 from bild_mdo.atmosphere import AtmosphereComp, isa
 from bild_mdo.bem import BEMAnalysisGroup, BEMResult, analyze_rotor
 from bild_mdo.bild import BILDGroup
-from bild_mdo.design import DesignResult, design_rotor
-from bild_mdo.off_design import OffDesignResult, off_design_sweep
+from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
+from bild_mdo.optimization.ipopt_driver import IpoptDriver
+from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_design_sweep
 
 __all__ = [
     "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BILDGroup", "DesignResult",
-    "OffDesignResult", "Polar", "design_rotor", "off_design_sweep",
-    "TabulatedPolar", "analyze_rotor", "get_polar", "isa", "naca4412", "__version__",
+    "IpoptDriver", "OffDesignResult", "Polar", "RotorGeometry", "TabulatedPolar", "__version__", "analyze_rotor",
+    "design_rotor", "get_polar", "isa", "naca4412", "off_design_sweep", "read_geometry", "write_geometry",
 ]

@@ -84,7 +84,7 @@ import warnings
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo import BILDGroup
+from bild_mdo import BILDGroup, IpoptDriver
 
 GRAVITY = 9.80665  # m/s^2, standard gravity
 OBJECTIVES = ("gross_mass", "mission_energy")
@@ -497,7 +497,7 @@ def build_problem(assumptions=None, num_radial=20, objective="gross_mass", optim
     objective : {'gross_mass', 'mission_energy'}
         Quantity to minimise.
     optimizer : {'slsqp', 'ipopt'}
-        ``om.ScipyOptimizeDriver`` (SLSQP) or :class:`bild_mdo.drivers.IpoptDriver`.
+        ``om.ScipyOptimizeDriver`` (SLSQP) or :class:`bild_mdo.IpoptDriver`.
     tol, maxiter : float, int
         Optimiser tolerance and iteration limit.
     print_level : int
@@ -526,8 +526,6 @@ def build_problem(assumptions=None, num_radial=20, objective="gross_mass", optim
     if optimizer == "slsqp":
         prob.driver = om.ScipyOptimizeDriver(optimizer="SLSQP", tol=tol, maxiter=maxiter, disp=print_level > 0)
     else:
-        from bild_mdo.drivers import IpoptDriver
-
         prob.driver = IpoptDriver(tol=tol, maxiter=maxiter, print_level=min(print_level, 12),
                                   disp=print_level > 0)
     prob.setup(force_alloc_complex=True)

@@ -1,9 +1,9 @@
 """The paper's Fig. 9: efficiency against advance ratio of BILD rotors designed for J_des = 0.5, 1, 1.5, 2.
 
 Four ideal rotors are designed with BILD (one vectorised
-:func:`bild_mdo.design.design_rotor` call) and each is analysed off design
+:func:`bild_mdo.design_rotor` call) and each is analysed off design
 with BEM over a range of advance ratios at its design rpm
-(:func:`bild_mdo.off_design.off_design_sweep`, one vectorised BEM run per
+(:func:`bild_mdo.off_design_sweep`, one vectorised BEM run per
 rotor).  The figure shows eta(J) with the design point (circle) and the
 maximum efficiency (star), next to the blades' chord and twist, as in the
 paper's Fig. 9.
@@ -38,9 +38,7 @@ import time
 
 import numpy as np
 
-from bild_mdo import naca4412
-from bild_mdo.design import design_rotor
-from bild_mdo.off_design import off_design_sweep
+from bild_mdo import design_rotor, naca4412, off_design_sweep
 
 DESIGN_ADVANCE_RATIOS = (0.5, 1.0, 1.5, 2.0)
 RADIUS = 1.5  # m

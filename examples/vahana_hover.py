@@ -16,7 +16,7 @@ Assumptions (the paper does not list the rotor of Fig. 3; these are ours):
 * reference station at 0.5 R (the paper's sweeps); the reference chord
   ``c_ref`` is solved for so that BILD's thrust is ``T*`` (an ``om.BalanceComp``
   on ``ref_chord`` with a Newton solver around the BILD group);
-* the optimisation is :func:`bild_mdo.optimization.problem.optimize_rotor`
+* the optimisation is :func:`bild_mdo.optimization.run.optimize_rotor`
   (SLSQP, one chord and one twist value per station, energy loss minimised at
   ``T = T*``), started from the BILD design.
 
@@ -42,7 +42,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo import BILDGroup, analyze_rotor, naca4412
-from bild_mdo.optimization.problem import optimize_rotor
+from bild_mdo.optimization.run import optimize_rotor
 
 GRAVITY = 9.80665  # m/s^2, standard gravity
 GROSS_MASS = 725.0  # kg, Airbus Vahana (paper Sec. 5.1)
@@ -106,12 +106,13 @@ class VahanaResult:
     ref_chord : float
         Solved reference chord (m).
     bild : dict
-        BILD design: ``radii``, ``chord`` (m), ``twist`` (rad), ``cl``, ``cd`` at the stations;
+        BILD design: ``radii``, ``chord`` (m), ``twist`` (rad), ``lift_coefficient``, ``drag_coefficient``
+        at the stations;
         ``thrust`` (N), ``power`` (W), ``energy_loss`` (W), ``figure_of_merit``.
     optimized : dict
         The full-BEM optimum, same keys (BEM analysis of the optimal geometry).
     optimization : OptimizationResult
-        From :func:`~bild_mdo.optimization.problem.optimize_rotor`.
+        From :func:`~bild_mdo.optimization.run.optimize_rotor`.
     figure_path : str or None
         Where the figure was written.
     timings : dict
@@ -130,8 +131,6 @@ class VahanaResult:
 def _bild_design(prob):
     names = {"radii": "m", "chord": "m", "twist": "rad", "lift_coefficient": None, "drag_coefficient": None}
     out = {name: prob.get_val(name, units=units)[0].copy() for name, units in names.items()}
-    out["cl"] = out.pop("lift_coefficient")
-    out["cd"] = out.pop("drag_coefficient")
     for name, units in (("thrust", "N"), ("power", "W"), ("energy_loss", "W"), ("figure_of_merit", None)):
         out[name] = float(prob.get_val(name, units=units)[0])
     return out
@@ -175,7 +174,8 @@ def main(num_radial=30, figure_path="vahana_hover.png", optimizer="slsqp", verbo
     bem = analyze_rotor(opt.chord, opt.twist, RADIUS, hub_radius, RPM, 0.0, NUM_BLADES, polar,
                         altitude=ALTITUDE)
     optimized = {"radii": np.asarray(bem.radii).copy(), "chord": opt.chord, "twist": opt.twist,
-                 "cl": np.asarray(bem.cl).copy(), "cd": np.asarray(bem.cd).copy(),
+                 "lift_coefficient": np.asarray(bem.lift_coefficient).copy(),
+                 "drag_coefficient": np.asarray(bem.drag_coefficient).copy(),
                  "thrust": float(bem.thrust), "power": float(bem.power), "energy_loss": float(bem.energy_loss),
                  "figure_of_merit": float(bem.figure_of_merit)}
 
@@ -235,7 +235,7 @@ def plot_comparison(bild, optimized, path, ref_chord=None, optimizer="slsqp"):
     fig = Figure(figsize=(10, 7), layout="constrained")
     axes = fig.subplots(2, 2, sharex=True)
     panels = (("chord", "chord $c$ (m)", 1.0), ("twist", r"twist $\theta$ (deg)", np.degrees(1.0)),
-              ("cl", "lift coefficient $C_l$", 1.0), ("cd", "drag coefficient $C_d$", 1.0))
+              ("lift_coefficient", "lift coefficient $C_l$", 1.0), ("drag_coefficient", "drag coefficient $C_d$", 1.0))
     for ax, (key, label, scale) in zip(axes.ravel(), panels):
         ax.plot(optimized["radii"] / RADIUS, optimized[key] * scale, "o-", color="tab:blue", ms=3,
                 label=f"full-BEM optimisation ({optimizer.upper()})")

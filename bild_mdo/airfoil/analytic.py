@@ -1,6 +1,8 @@
 """A closed-form, twice continuously differentiable polar for tests and quick studies."""
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from bild_mdo.airfoil.polar import Polar, PolarSecondDerivatives, PolarValues
@@ -16,6 +18,8 @@ def _smoothstep(t):
     return w, dw, d2w
 
 
+# eq=False keeps identity hashing: models are cached per polar object.
+@dataclasses.dataclass(eq=False, repr=False)
 class AnalyticPolar(Polar):
     """Linear lift and quadratic drag, blended C^2 into Viterna post-stall flow to +-180 deg.
 
@@ -73,22 +77,22 @@ class AnalyticPolar(Polar):
 
     name = "analytic"
 
-    def __init__(self, cl0=0.4, cl_alpha=0.9 * 2.0 * np.pi, cd0=0.008, k=0.01, cl_cd_min=0.4,
-                 alpha_stall=np.radians(13.0), alpha_stall_negative=np.radians(-12.0),
-                 stall_half_width=np.radians(3.0), cd_max=DEFAULT_CD_MAX,
-                 cd_reverse=DEFAULT_CD_REVERSE, reynolds_exponent=0.0, reynolds_ref=1.0e6):
-        self.cl0 = float(cl0)
-        self.cl_alpha = float(cl_alpha)
-        self.cd0 = float(cd0)
-        self.k = float(k)
-        self.cl_cd_min = float(cl_cd_min)
-        self.alpha_stall = float(alpha_stall)
-        self.alpha_stall_negative = float(alpha_stall_negative)
-        self.stall_half_width = float(stall_half_width)
-        self.cd_max = float(cd_max)
-        self.cd_reverse = float(cd_reverse)
-        self.reynolds_exponent = float(reynolds_exponent)
-        self.reynolds_ref = float(reynolds_ref)
+    cl0: float = 0.4
+    cl_alpha: float = 0.9 * 2.0 * np.pi
+    cd0: float = 0.008
+    k: float = 0.01
+    cl_cd_min: float = 0.4
+    alpha_stall: float = np.radians(13.0)
+    alpha_stall_negative: float = np.radians(-12.0)
+    stall_half_width: float = np.radians(3.0)
+    cd_max: float = DEFAULT_CD_MAX
+    cd_reverse: float = DEFAULT_CD_REVERSE
+    reynolds_exponent: float = 0.0
+    reynolds_ref: float = 1.0e6
+
+    def __post_init__(self):
+        for field in dataclasses.fields(self):
+            setattr(self, field.name, float(getattr(self, field.name)))
         dw = self.stall_half_width
         if not (self.cl_alpha > 0 and self.cd0 > 0 and self.k > 0 and dw > 0
                 and self.cd_max > 0 and self.cd_reverse > 0 and self.reynolds_ref > 0):

@@ -1,9 +1,12 @@
-"""Registry of the airfoil polars that ship with bild-mdo."""
+"""Registry of the airfoil polars that ship with bild-mdo, and the one way to turn a name into a polar."""
 from __future__ import annotations
 
 import functools
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.airfoil.polar import Polar
+from bild_mdo.airfoil.sources.readers import load_builtin_polars
+from bild_mdo.airfoil.surrogate import TabulatedPolar
 
 
 @functools.lru_cache(maxsize=None)
@@ -17,9 +20,6 @@ def naca4412():
     TabulatedPolar
         The same object on every call.
     """
-    from bild_mdo.airfoil.readers import load_builtin_polars
-    from bild_mdo.airfoil.surrogate import TabulatedPolar
-
     return TabulatedPolar(load_builtin_polars("naca4412"), name="naca4412")
 
 
@@ -64,3 +64,41 @@ def get_polar(name):
         raise ValueError(f"unknown airfoil {name!r}; available: "
                          f"{', '.join(available_polars())}") from None
     return factory()
+
+
+def resolve_polar(airfoil):
+    """The polar an ``airfoil`` argument stands for: a :class:`Polar` or a built-in name.
+
+    Every public entry point that takes an airfoil (design, analysis,
+    optimisation, verification) resolves it here, so they all accept the same
+    values and raise the same message.
+
+    Parameters
+    ----------
+    airfoil : Polar or str
+        A polar object (returned as is) or the name of a built-in airfoil
+        (case-insensitive, see :func:`available_polars`).
+
+    Returns
+    -------
+    Polar
+        ``airfoil`` itself, or :func:`get_polar` of the name (the cached
+        surrogate for ``'naca4412'``).  Its ``name`` attribute labels results.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name or a value that is neither a name nor a polar;
+        the one-line message lists the available names.
+    """
+    if isinstance(airfoil, Polar):
+        return airfoil
+    choices = ", ".join(available_polars())
+    if isinstance(airfoil, str):
+        key = airfoil.strip().lower()
+        if key not in _REGISTRY:
+            raise ValueError(f"unknown airfoil {airfoil!r}; available: {choices} "
+                             "(or pass a bild_mdo.airfoil.Polar object)")
+        return _REGISTRY[key]()
+    raise ValueError(f"airfoil must be a built-in name ({choices}) or a bild_mdo.airfoil.Polar object, "
+                     f"got {type(airfoil).__name__}")

@@ -6,26 +6,43 @@ attack of maximum ``cl/cd``.  At that angle
     g(alpha, Re) = cl_alpha cd - cl cd_alpha = 0,
 
 the numerator of ``d(cl/cd)/d(alpha)``.  This module brackets the maximum by a
-vectorised scan, solves ``g = 0`` by a safeguarded Newton iteration to
-round-off, and differentiates the solution by the implicit function theorem::
+vectorised scan, solves ``g = 0`` to round-off with the package's safeguarded
+Newton solver (:func:`bild_mdo.utils.newton.bracketed_newton`), and
+differentiates the solution by the implicit function theorem::
 
     dalpha*/dRe = -g_Re / g_alpha
     g_alpha = cl_aa cd - cl cd_aa                    (the cl_a cd_a terms cancel)
     g_Re    = cl_aRe cd + cl_a cd_Re - cl_Re cd_a - cl cd_aRe
     dcl*/dRe = cl_a dalpha*/dRe + cl_Re,   dcd*/dRe = cd_a dalpha*/dRe + cd_Re
+
+The solver needs only the polar's ``evaluate`` and ``second_derivatives``
+methods, so it sits below :mod:`bild_mdo.airfoil.polar`, whose
+:meth:`~bild_mdo.airfoil.polar.Polar.max_lift_to_drag` calls it.
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
-from bild_mdo.airfoil.polar import MaxLiftToDrag
+from bild_mdo.utils.newton import bracketed_newton
 
 #: Default scan range of the bracket search (rad) for polars that do not give one.
 DEFAULT_SCAN_RANGE = (np.radians(-10.0), np.radians(25.0))
 
 _SCAN_STEP = np.radians(0.25)
 _MAX_ITERATIONS = 100
-_ALPHA_TOL = 1e-14
+
+
+class MaxLiftToDrag(NamedTuple):
+    """The maximum-L/D operating point at given Reynolds numbers and its Re derivatives."""
+
+    alpha: np.ndarray
+    cl: np.ndarray
+    cd: np.ndarray
+    dalpha_dre: np.ndarray
+    dcl_dre: np.ndarray
+    dcd_dre: np.ndarray
 
 
 def _g_and_slope(polar, alpha, reynolds):
@@ -36,13 +53,22 @@ def _g_and_slope(polar, alpha, reynolds):
     return g, dg, v, s
 
 
+def _polar_name(polar):
+    return getattr(polar, "name", type(polar).__name__)
+
+
+def _listed(reynolds):
+    return f"{reynolds[:5].tolist()}{' ...' if reynolds.size > 5 else ''}"
+
+
 def max_lift_to_drag(polar, reynolds, alpha_range=None):
     """Angle of attack, lift and drag of maximum ``cl/cd`` at each Reynolds number.
 
     Parameters
     ----------
     polar : Polar
-        Any polar that provides first and second derivatives.
+        Any polar that provides first and second derivatives (its
+        ``evaluate`` and ``second_derivatives`` methods are used).
     reynolds : array_like
         Chord Reynolds numbers, any shape.  Complex values (complex step) are
         evaluated at the real part and the imaginary part is carried to first
@@ -63,7 +89,8 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
     ValueError
         If ``cl/cd`` has no interior local maximum with ``cl > 0`` in the
         range (the polar is not a lifting airfoil there, or the range is too
-        small), or if a Reynolds number is not finite.
+        small), if a Reynolds number is not finite, or if the Newton solve
+        does not converge (the message names the Reynolds numbers).
     """
     reynolds = np.asarray(reynolds)
     is_complex = np.iscomplexobj(reynolds)
@@ -89,40 +116,30 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
     is_max = (g[:, :-1] > 0.0) & (g[:, 1:] <= 0.0) & (v.cl[:, :-1] > 0.0) & (v.cd[:, :-1] > 0.0)
     score = np.where(is_max, np.maximum(ratio[:, :-1], ratio[:, 1:]), -np.inf)
     k = np.argmax(score, axis=1)
-    missing = ~np.isfinite(score[np.arange(re_flat.size), k])
+    rows = np.arange(re_flat.size)
+    missing = ~np.isfinite(score[rows, k])
     if np.any(missing):
-        bad = re_flat[missing]
         raise ValueError(
-            f"{getattr(polar, 'name', type(polar).__name__)}: cl/cd has no interior maximum with "
+            f"{_polar_name(polar)}: cl/cd has no interior maximum with "
             f"cl > 0 for alpha in [{np.degrees(low):g}, {np.degrees(high):g}] deg at Re = "
-            f"{bad[:5].tolist()}{' ...' if bad.size > 5 else ''}; check the polar or pass a "
-            "wider alpha_range")
-    lo = grid[k].copy()
-    hi = grid[k + 1].copy()
+            f"{_listed(re_flat[missing])}; check the polar or pass a wider alpha_range")
 
-    # Safeguarded Newton on g = 0: bisect whenever the Newton step leaves the bracket.
-    alpha = 0.5 * (lo + hi)
-    active = np.ones(re_flat.size, dtype=bool)
-    for _ in range(_MAX_ITERATIONS):
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        a, r = alpha[idx], re_flat[idx]
-        g_a, dg_a, _, _ = _g_and_slope(polar, a, r)
-        pos = g_a > 0.0
-        lo[idx] = np.where(pos, a, lo[idx])
-        hi[idx] = np.where(pos, hi[idx], a)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            step = -g_a / dg_a
-        new = np.where(g_a == 0.0, a, a + step)
-        inside = np.isfinite(new) & (new >= lo[idx]) & (new <= hi[idx])
-        new = np.where(inside, new, 0.5 * (lo[idx] + hi[idx]))
-        alpha[idx] = new
-        done = (np.abs(new - a) <= _ALPHA_TOL * (1.0 + np.abs(a))) \
-            | (hi[idx] - lo[idx] <= _ALPHA_TOL)
-        active[idx[done]] = False
+    def residual(alpha, idx):
+        g_a, dg_a, v, _ = _g_and_slope(polar, alpha, re_flat[idx])
+        # Magnitude of the two terms of g: g is zero to round-off below 4 eps times it.
+        scale = np.abs(v.dcl_dalpha * v.cd) + np.abs(v.cl * v.dcd_dalpha)
+        return g_a, dg_a, scale
 
-    g_a, dg_a, v, s = _g_and_slope(polar, alpha, re_flat)
+    # g > 0 at the low end of the scan interval, g <= 0 at the high end.
+    solution = bracketed_newton(residual, grid[k], grid[k + 1], g[rows, k], max_iter=_MAX_ITERATIONS)
+    if not np.all(solution.converged):
+        raise ValueError(
+            f"{_polar_name(polar)}: the maximum-L/D solve did not converge in {_MAX_ITERATIONS} "
+            f"Newton iterations at Re = {_listed(re_flat[~solution.converged])}; check that the "
+            "polar and its derivatives are finite near the maximum")
+    alpha = solution.x
+
+    _, dg_a, v, s = _g_and_slope(polar, alpha, re_flat)
     g_re = (s.d2cl_dalpha_dre * v.cd + v.dcl_dalpha * v.dcd_dre
             - v.dcl_dre * v.dcd_dalpha - v.cl * s.d2cd_dalpha_dre)
     dalpha = -g_re / dg_a

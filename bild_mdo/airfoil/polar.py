@@ -22,6 +22,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from bild_mdo.airfoil.max_lift_to_drag import max_lift_to_drag
+
 
 class PolarValues(NamedTuple):
     """Lift and drag coefficients and their first derivatives (alpha in rad, Re nondimensional)."""
@@ -41,17 +43,6 @@ class PolarSecondDerivatives(NamedTuple):
     d2cl_dalpha_dre: np.ndarray
     d2cd_dalpha2: np.ndarray
     d2cd_dalpha_dre: np.ndarray
-
-
-class MaxLiftToDrag(NamedTuple):
-    """The maximum-L/D operating point at given Reynolds numbers and its Re derivatives."""
-
-    alpha: np.ndarray
-    cl: np.ndarray
-    cd: np.ndarray
-    dalpha_dre: np.ndarray
-    dcl_dre: np.ndarray
-    dcd_dre: np.ndarray
 
 
 def _real(x):
@@ -114,9 +105,17 @@ class Polar(abc.ABC):
         Exact on this polar (a Newton solve of d(cl/cd)/d(alpha) = 0), not a
         grid scan.  Complex ``reynolds`` is carried to first order like
         :meth:`evaluate`.
-        """
-        from bild_mdo.airfoil.max_lift_to_drag import max_lift_to_drag
 
+        Parameters
+        ----------
+        reynolds : array_like
+            Chord Reynolds numbers, any shape.
+
+        Returns
+        -------
+        MaxLiftToDrag
+            See :func:`bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag`.
+        """
         return max_lift_to_drag(self, reynolds)
 
     @abc.abstractmethod

@@ -7,6 +7,8 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 
 from bild_mdo.airfoil.polar import Polar, PolarSecondDerivatives, PolarValues
+from bild_mdo.airfoil.sources.polar_data import PolarData
+from bild_mdo.airfoil.sources.readers import read_polar_table, read_xfoil_polar
 from bild_mdo.airfoil.viterna import (DEFAULT_CD_MAX, DEFAULT_CD_REVERSE, STALL_BLEND_HALF_WIDTH,
                                       default_alpha_grid, extend_polar)
 
@@ -141,7 +143,7 @@ class TabulatedPolar(Polar):
         Parameters
         ----------
         paths : sequence of str or os.PathLike
-            XFOIL polar files.
+            XFOIL polar files, read with :func:`~bild_mdo.airfoil.sources.readers.read_xfoil_polar`.
         **kwargs
             Passed to :class:`TabulatedPolar`.
 
@@ -149,27 +151,14 @@ class TabulatedPolar(Polar):
         -------
         TabulatedPolar
         """
-        from bild_mdo.airfoil.readers import read_xfoil_polar
-
         return cls([read_xfoil_polar(p) for p in paths], **kwargs)
 
     @classmethod
     def from_tables(cls, paths, **kwargs):
-        """Surrogate of plain polar tables (columns ``alpha_deg, cl, cd`` and a ``# reynolds =`` line).
+        """:meth:`from_files` for plain tables (columns ``alpha_deg, cl, cd``, a ``# reynolds =`` line).
 
-        Parameters
-        ----------
-        paths : sequence of str or os.PathLike
-            Table files, read with :func:`bild_mdo.airfoil.readers.read_polar_table`.
-        **kwargs
-            Passed to :class:`TabulatedPolar`.
-
-        Returns
-        -------
-        TabulatedPolar
+        The files are read with :func:`~bild_mdo.airfoil.sources.readers.read_polar_table`.
         """
-        from bild_mdo.airfoil.readers import read_polar_table
-
         return cls([read_polar_table(p) for p in paths], **kwargs)
 
     @classmethod
@@ -189,8 +178,6 @@ class TabulatedPolar(Polar):
         -------
         TabulatedPolar
         """
-        from bild_mdo.airfoil.readers import PolarData
-
         if not len(reynolds) == len(alpha_deg) == len(cl) == len(cd):
             raise ValueError("reynolds, alpha_deg, cl, cd must have the same length")
         return cls([PolarData(re, 0.0, a, l, d, source=f"table {i} (Re={re:g})")

@@ -401,7 +401,7 @@ def extend_arrays(alpha_deg, cl, cd, reynolds=float("nan"), *, alpha_grid=None,
 
 
 def extend_polar(data, **kwargs):
-    """:func:`extend_arrays` for a :class:`~bild_mdo.airfoil.readers.PolarData`.
+    """:func:`extend_arrays` for a :class:`~bild_mdo.airfoil.sources.polar_data.PolarData`.
 
     Parameters
     ----------

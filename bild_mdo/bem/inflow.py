@@ -4,10 +4,11 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bem.root_finding import complex_newton_update, solve_bracketed
-from bild_mdo.bem.section import (NODE_INPUTS, add_section_inputs, declare_section_options,
-                                  evaluate_section, inflow_angle_guess, residual_function, section_arguments,
-                                  section_input_names)
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
+                                        evaluate_section, inflow_angle_guess, residual_function,
+                                        section_arguments, section_input_names)
+from bild_mdo.bem.root_finding import solve_bracketed
+from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 
@@ -17,29 +18,19 @@ class InflowComp(om.ImplicitComponent):
     ``R(phi) = (V_x/V_theta)(sigma C_theta + 4 F sin cos) + sigma C_x - 4 F sin^2 = 0``
     at every station.  ``solve_nonlinear`` is the vectorised guaranteed-bracket
     solve of :mod:`bild_mdo.bem.root_finding` (Ning 2014); under complex step it
-    adds one complex Newton update so the imaginary part carries the exact
-    derivative.  The state Jacobian is diagonal: ``solve_linear`` divides.
+    adds one complex Newton update (:func:`~bild_mdo.utils.newton.complex_step_update`)
+    so the imaginary part carries the exact derivative.  The state Jacobian is diagonal: ``solve_linear`` divides.
     Inputs outside the model's domain (``v_axial < 0``, non-positive rpm, chord,
     radii, rho or mu) and stations without a bracket raise ``om.AnalysisError``.
 
-    Options
-    -------
-    num_nodes, num_radial : int
-        Designs (axis 0) and stations (axis 1).
-    num_blades : int
-        Number of blades B.
-    polar : Polar
-        Airfoil polar (not recorded).
-    loss_model : {'tip_hub', 'tip', 'none'}
-        Prandtl loss factor model.
+    Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
+    :func:`~bild_mdo.bem.blade_element.declare_section_options`.
 
     Inputs
     ------
-    v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), hub_radius[nn] (m), rho[nn] (kg/m**3),
-    mu[nn] (Pa*s)
-        Operating point, rotor size and atmosphere.
+    v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), hub_radius[nn] (m), rho[nn] (kg/m**3), mu[nn] (Pa*s),
     radii[nn, nr] (m), chord[nn, nr] (m), twist[nn, nr] (rad)
-        Station radii and blade geometry.
+        The blade-element inputs (:data:`~bild_mdo.bem.blade_element.SECTION_INPUTS`).
 
     Outputs
     -------
@@ -52,7 +43,7 @@ class InflowComp(om.ImplicitComponent):
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
-        add_section_inputs(self, nn, nr)
+        add_section_inputs(self)
         self.add_output("phi", val=np.full((nn, nr), 0.2), units="rad", desc="inflow angle")
         self._dR_dphi = np.ones((nn, nr))
 
@@ -116,7 +107,7 @@ class InflowComp(om.ImplicitComponent):
             kw = section_arguments(inputs, self.options)
             values, partials = evaluate_section(phi, loads=False, **kw)
             dR_dphi = np.broadcast_to(partials["residual"]["phi"], shape)
-            phi = complex_newton_update(phi, values["residual"], dR_dphi)
+            phi = complex_step_update(phi, values["residual"], dR_dphi)
         outputs["phi"] = phi
 
     def linearize(self, inputs, outputs, jacobian):

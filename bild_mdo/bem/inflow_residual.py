@@ -4,13 +4,13 @@ With ``sigma = B c / (2 pi r)``, ``C_x = cl cos(phi) - cd sin(phi)``,
 ``C_theta = cl sin(phi) + cd cos(phi)`` (Eq. 7) and ``V_theta = Omega r``,
 equating the momentum thrust and torque (Eqs. 1, 2, both multiplied by ``F``)
 with the blade-element ones (Eqs. 5, 6) and closing with the inflow geometry
-``tan(phi) = u_x / (V_theta - u_theta/2)`` gives Eq. (9) generalised by ``F``:
+``tan(phi) = u_axial / (V_theta - u_theta/2)`` gives Eq. (9) generalised by ``F``:
 
     R(phi) = (V_x/V_theta) (sigma C_theta + 4 F sin cos) + sigma C_x - 4 F sin^2
 
 and the induced velocities (Eq. 8 with ``F``):
 
-    u_theta = 2 sigma C_theta V_theta / D,   u_x = V_x + sigma C_x V_theta / D,
+    u_theta = 2 sigma C_theta V_theta / D,   u_axial = V_x + sigma C_x V_theta / D,
     D = 4 F sin(phi) cos(phi) + sigma C_theta.
 
 Both forms stay regular at ``V_x = 0`` (hover).  The functions below take
@@ -64,7 +64,7 @@ class InducedVelocities(NamedTuple):
     Attributes
     ----------
     u_axial, u_theta : ndarray
-        Axial velocity at the disk ``u_x`` and tangential induced velocity ``u_theta`` (m/s).
+        Axial velocity at the disk ``u_axial`` and tangential induced velocity ``u_theta`` (m/s).
     du_axial_d<x>, du_theta_d<x> : ndarray
         Partials with respect to phi (m/s/rad), v_axial, v_theta (1), sigma, cl, cd and F (m/s).
     """
@@ -154,6 +154,17 @@ def inflow_residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
     return _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
 
 
+def _eq8_terms(phi, sigma, cl, cd, F):
+    """``sin, cos, C_x, C_theta`` and the terms ``P = 4 F sin cos``, ``N = sigma C_theta``,
+    ``M = sigma C_x``, ``D = P + N`` of Eq. (8)."""
+    s, c = np.sin(phi), np.cos(phi)
+    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
+    P = 4.0 * F * s * c
+    N = sigma * c_theta
+    M = sigma * c_x
+    return s, c, c_x, c_theta, P, N, M, P + N
+
+
 def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
     """Induced velocities of Eq. (8) generalised by the loss factor, with explicit partials.
 
@@ -166,22 +177,13 @@ def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
         ``u_theta = 2 sigma C_theta V_theta / D`` with
         ``D = 4 F sin(phi) cos(phi) + sigma C_theta``.
     """
-    s, c = np.sin(phi), np.cos(phi)
-    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
-    P = 4.0 * F * s * c
-    N = sigma * c_theta
-    M = sigma * c_x
-    D = P + N
+    _, _, _, _, P, N, M, D = _eq8_terms(phi, sigma, cl, cd, F)
     u_theta = 2.0 * v_theta * N / D
     u_axial = v_axial + v_theta * M / D
 
+    # Partials are real: the same terms from the real parts.
     phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
-    s, c = np.sin(phi), np.cos(phi)
-    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
-    P = 4.0 * F * s * c
-    N = sigma * c_theta
-    M = sigma * c_x
-    D = P + N
+    s, c, c_x, c_theta, P, N, M, D = _eq8_terms(phi, sigma, cl, cd, F)
     shape = np.broadcast(u_axial, u_theta, phi).shape
 
     # Intermediate partials: P(phi, F), N(phi, sigma, cl, cd), M(phi, sigma, cl, cd).
@@ -192,7 +194,7 @@ def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
     # u_theta = 2 V N / (P + N)
     ut_N = 2.0 * v_theta * P / D**2
     ut_P = -2.0 * v_theta * N / D**2
-    # u_x = V_x + V M / (P + N)
+    # u_axial = V_x + V M / (P + N)
     ux_M = v_theta / D
     ux_D = -v_theta * M / D**2
 

@@ -4,25 +4,12 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
+from bild_mdo.constants import RPM_TO_RAD_PER_S, RPM_TO_REV_PER_S
+from bild_mdo.utils.options import add_inputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
 
-_RPM_TO_RAD_S = np.pi / 30.0
 _SQRT_2PI = np.sqrt(2.0 * np.pi)
-
-#: Per-design outputs: name -> (units, description).
-PERFORMANCE_OUTPUTS = {
-    "thrust": ("N", "rotor thrust T = sum(dT/dr dr)"),
-    "torque": ("N*m", "rotor torque Q = sum(dQ/dr dr)"),
-    "power": ("W", "shaft power P = Omega Q"),
-    "efficiency": (None, "propulsive efficiency eta = V_x T / (Omega Q)"),
-    "figure_of_merit": (None, "figure of merit FM = T/P sqrt(T / (2 pi R^2 rho)) (odd in T)"),
-    "thrust_coefficient": (None, "C_T = T / (rho n^2 D^4), n in rev/s, D = 2R"),
-    "torque_coefficient": (None, "C_Q = Q / (rho n^2 D^5)"),
-    "power_coefficient": (None, "C_P = P / (rho n^3 D^5)"),
-    "energy_loss": ("W", "rate of energy loss E = Omega Q - V_x T"),
-    "solidity": (None, "blade solidity sigma_r = B sum(c dr) / (pi R^2)"),
-    "blade_loading": (None, "blade loading C_T / sigma_r"),
-}
 
 # Which per-design primitives each output depends on (T, Q, S = sum(c dr) come from distributions).
 _DEPENDS = {
@@ -96,8 +83,8 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
         exactly 0.
     """
     _check_power(Q, rpm)
-    omega = rpm * _RPM_TO_RAD_S
-    n = rpm / 60.0
+    omega = rpm * RPM_TO_RAD_PER_S
+    n = rpm * RPM_TO_REV_PER_S
     D = 2.0 * radius
     P = omega * Q
     abs_T = _abs(T)
@@ -118,7 +105,7 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
     partials = {
         "thrust": {"T": one},
         "torque": {"Q": one},
-        "power": {"Q": omega * one, "rpm": _RPM_TO_RAD_S * Q},
+        "power": {"Q": omega * one, "rpm": RPM_TO_RAD_PER_S * Q},
         "efficiency": {"T": v_axial / P, "Q": -eta / Q, "v_axial": T / P, "rpm": -eta / rpm},
         "figure_of_merit": {"T": 1.5 * sqrt_abs_T / (P * _SQRT_2PI * radius * np.sqrt(rho)),
                             "Q": -fm / Q, "rpm": -fm / rpm, "radius": -fm / radius,
@@ -130,7 +117,7 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
         "power_coefficient": {"Q": omega / (rho * n**3 * D**5), "rpm": -2.0 * cp / rpm,
                               "radius": -5.0 * cp / radius, "rho": -cp / rho},
         "energy_loss": {"T": -v_axial * one, "Q": omega * one, "v_axial": -T,
-                        "rpm": _RPM_TO_RAD_S * Q},
+                        "rpm": RPM_TO_RAD_PER_S * Q},
         "solidity": {"S": num_blades / (np.pi * radius**2) * one, "radius": -2.0 * sol / radius},
         "blade_loading": {"T": 1.0 / (rho * n**2 * D**4 * sol), "S": -bl / S, "rpm": -2.0 * bl / rpm,
                           "radius": -2.0 * bl / radius, "rho": -bl / rho},
@@ -151,12 +138,8 @@ class RotorPerformanceComp(om.ExplicitComponent):
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points (axis 0).
-    num_radial : int
-        Number of radial stations (axis 1).
-    num_blades : int
-        Number of blades B.
+    num_nodes, num_radial, num_blades : int
+        Sizes (:func:`~bild_mdo.utils.options.declare_size_options`) and the number of blades B.
 
     Inputs
     ------
@@ -177,20 +160,12 @@ class RotorPerformanceComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations (axis 1)")
-        self.options.declare("num_blades", types=int, desc="number of blades B")
+        declare_size_options(self.options)
+        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
 
     def setup(self):
-        nn, nr = self.options["num_nodes"], self.options["num_radial"]
-        self.add_input("dthrust_dr", val=np.ones((nn, nr)), units="N/m", desc="sectional thrust per unit span")
-        self.add_input("dtorque_dr", val=np.ones((nn, nr)), units="N*m/m", desc="sectional torque per unit span")
-        self.add_input("dr", val=np.full((nn, nr), 0.1), units="m", desc="radial width of each station")
-        self.add_input("chord", val=np.full((nn, nr), 0.1), units="m", desc="blade chord")
-        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="freestream axial velocity V_x")
-        self.add_input("rpm", val=np.full(nn, 1000.0), units="rpm", desc="rotational speed")
-        self.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius R")
-        self.add_input("rho", val=np.full(nn, 1.225), units="kg/m**3", desc="air density")
+        nn = self.options["num_nodes"]
+        add_inputs(self, ("dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm", "radius", "rho"))
         for name, (units, desc) in PERFORMANCE_OUTPUTS.items():
             self.add_output(name, val=np.ones(nn), units=units, desc=desc)
 

@@ -33,7 +33,33 @@ SIN_PHI_FLOOR = 1e-12
 EXPONENT_MIN = 1e-10
 EXPONENT_MAX = 100.0
 
+#: Prandtl loss models: tip x hub factor, tip factor only, or no loss (F = 1).
 LOSS_MODELS = ("tip_hub", "tip", "none")
+#: Rotor radii the loss factor depends on (besides phi and the station radius) per loss model.
+_LOSS_RADII = {"tip_hub": ("radius", "hub_radius"), "tip": ("radius",), "none": ()}
+
+
+def loss_inputs(loss_model):
+    """The rotor radii (``'radius'``, ``'hub_radius'``) that ``F`` depends on under ``loss_model``, for sparsity."""
+    return _LOSS_RADII[loss_model]
+
+
+def loss_partials(loss, loss_model, phi="phi", r="radii"):
+    """Partials of ``F`` keyed by input name: ``phi`` and ``r`` always, the rotor radii ``F`` depends on.
+
+    Parameters
+    ----------
+    loss : PrandtlLoss
+        The loss factor and its partials.
+    loss_model : str
+        One of :data:`LOSS_MODELS`.
+    phi, r : str
+        The component's names of the inflow angle and of the station radius.
+    """
+    fields = {"radius": loss.dF_dradius, "hub_radius": loss.dF_dhub_radius}
+    partials = {phi: loss.dF_dphi, r: loss.dF_dr}
+    partials.update((name, fields[name]) for name in loss_inputs(loss_model))
+    return partials
 
 
 class PrandtlLoss(NamedTuple):
@@ -142,28 +168,25 @@ def prandtl_loss(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
     )
 
 
-def _tip_factor(phi, r, radius, num_blades):
-    """F_tip and its partials (phi, r, R); f = B (R - r) / (2 r |sin phi|)."""
+def _factor(phi, gap, base, num_blades):
+    """Prandtl factor ``2/pi acos(exp(-f))``, ``f = B gap / (2 base |sin phi|)``, and its phi, gap, base partials."""
     abs_s, dabs_dphi = _abs_sin(phi)
     half_b = 0.5 * num_blades
-    f = half_b * (radius - r) / (r * abs_s)
+    f = half_b * gap / (base * abs_s)
     value, dF_df = _acos_factor(f)
-    df_dphi = -f / abs_s * dabs_dphi
-    df_dr = -half_b * radius / (r * r * abs_s)
-    df_dR = half_b / (r * abs_s)
-    return value, (dF_df * df_dphi, dF_df * df_dr, dF_df * df_dR)
+    return value, (dF_df * (-f / abs_s * dabs_dphi), dF_df * half_b / (base * abs_s), dF_df * (-f / base))
+
+
+def _tip_factor(phi, r, radius, num_blades):
+    """F_tip and its partials (phi, r, R): gap ``R - r`` over the station radius ``r``."""
+    value, (d_phi, d_gap, d_base) = _factor(phi, radius - r, r, num_blades)
+    return value, (d_phi, d_base - d_gap, d_gap)
 
 
 def _hub_factor(phi, r, hub_radius, num_blades):
-    """F_hub and its partials (phi, r, r_hub); g = B (r - r_hub) / (2 r_hub |sin phi|)."""
-    abs_s, dabs_dphi = _abs_sin(phi)
-    half_b = 0.5 * num_blades
-    g = half_b * (r - hub_radius) / (hub_radius * abs_s)
-    value, dF_dg = _acos_factor(g)
-    dg_dphi = -g / abs_s * dabs_dphi
-    dg_dr = half_b / (hub_radius * abs_s)
-    dg_drh = -half_b * r / (hub_radius * hub_radius * abs_s)
-    return value, (dF_dg * dg_dphi, dF_dg * dg_dr, dF_dg * dg_drh)
+    """F_hub and its partials (phi, r, r_hub): gap ``r - r_hub`` over the hub radius."""
+    value, (d_phi, d_gap, d_base) = _factor(phi, r - hub_radius, hub_radius, num_blades)
+    return value, (d_phi, d_gap, d_base - d_gap)
 
 
 def prandtl_loss_and_dphi(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):

@@ -11,21 +11,22 @@ whose end points have opposite signs:
 3. ``[pi/2, pi - eps]``   (propeller-brake with reversed tangential flow),
 
 and, as a last resort, a scan of ``[-pi/2, pi - eps]`` for any sign change.
-Inside the bracket a safeguarded Newton iteration (a bisection step whenever
-Newton leaves the bracket or fails to halve ``|R|``) converges to round-off.
+Inside the bracket the package's one safeguarded Newton solver
+(:func:`bild_mdo.utils.newton.bracketed_newton`) converges to round-off.
 
 The solver does not know the physics: it calls ``residual(phi, idx)`` where
 ``idx`` is an integer array of flat station indices and ``phi`` holds the
 trial angles at those stations, and which returns ``(R, dR_dphi)`` (total
-derivative along the station's own ``phi``).  Evaluating only the stations
-still iterating keeps large batches cheap.  The BEM inflow component passes
+derivative along the station's own ``phi``).  The BEM inflow component passes
 a residual that evaluates the polar; the BILD reference-station solve passes
-one with fixed ``cl, cd``.
+one with fixed ``lift_coefficient, drag_coefficient`` (``C_l*, C_d*``).
 """
 from __future__ import annotations
 
 import numpy as np
 import openmdao.api as om
+
+from bild_mdo.utils.newton import bracketed_newton, false_position
 
 #: Distance of the search intervals from phi = 0 and phi = pi (rad), as in Ning (2014).
 BRACKET_EPS = 1e-6
@@ -143,7 +144,10 @@ def _check_finite(values, idx, phi, describe):
 
 def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,
                     initial_guess=None):
-    """Solve ``R(phi) = 0`` at every station with a bracketed, safeguarded Newton method.
+    """Solve ``R(phi) = 0`` at every station: Ning's bracket search, then the safeguarded Newton solve.
+
+    The Newton solve is :func:`bild_mdo.utils.newton.bracketed_newton`, started at
+    the false-position point of each bracket (or at ``initial_guess``).
 
     Parameters
     ----------
@@ -178,69 +182,16 @@ def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL,
     """
     describe = describe or _default_describe(shape or (size,))
     lo, hi, r_lo, r_hi = find_brackets(residual, size, describe=describe)
-
-    # False position as the first iterate: strictly inside a strict bracket.
-    denom = r_hi - r_lo
-    with np.errstate(invalid="ignore", divide="ignore"):
-        x = np.where(denom != 0.0, lo - r_lo * (hi - lo) / denom, 0.5 * (lo + hi))
-    x = np.clip(x, lo, hi)
+    x0 = false_position(lo, hi, r_lo, r_hi)
     if initial_guess is not None:
         guess = np.broadcast_to(np.asarray(initial_guess, dtype=float), (size,))
-        inside = (guess - lo) * (guess - hi) < 0.0
-        x = np.where(inside, guess, x)
-    r, dr = residual(x, np.arange(size))
-    r = np.array(r, dtype=float)
-    dr = np.array(dr, dtype=float)
-    r_prev = np.full(size, np.inf)
-
-    active = np.arange(size)
-    for _ in range(max_iter):
-        ra, da, xa = r[active], dr[active], x[active]
-        _check_finite(ra, active, xa, describe)
-        # Keep the bracket: replace the end point whose residual has the sign of R(x).
-        same_lo = np.sign(ra) == np.sign(r_lo[active])
-        lo[active] = np.where(same_lo, xa, lo[active])
-        r_lo[active] = np.where(same_lo, ra, r_lo[active])
-        hi[active] = np.where(same_lo, hi[active], xa)
-        r_hi[active] = np.where(same_lo, r_hi[active], ra)
-
-        with np.errstate(invalid="ignore", divide="ignore"):
-            step = ra / da
-        width = np.abs(hi[active] - lo[active])
-        roundoff = 4.0 * np.finfo(float).eps * np.maximum(np.abs(xa), 1e-3)
-        done = (np.abs(ra) <= tol) | (np.abs(step) <= roundoff) | (width <= roundoff)
-        active = active[~done]
-        if active.size == 0:
-            return x
-        ra, xa, step = ra[~done], xa[~done], step[~done]
-        lo_a, hi_a = np.minimum(lo[active], hi[active]), np.maximum(lo[active], hi[active])
-        newton = xa - step
-        bisect = (~np.isfinite(newton) | (newton <= lo_a) | (newton >= hi_a)
-                  | (np.abs(ra) > 0.5 * r_prev[active]))
-        x_new = np.where(bisect, 0.5 * (lo_a + hi_a), newton)
-        r_prev[active] = np.abs(ra)
-        x[active] = x_new
-        r_new, dr_new = residual(x_new, active)
-        r[active] = r_new
-        dr[active] = dr_new
-
-    raise om.AnalysisError(
-        f"BEM inflow solve did not converge in {max_iter} iterations at {describe(active[0])} "
-        f"({active.size} station(s) in all); |R| = {np.abs(r[active[0]]):.3e}.")
-
-
-def complex_newton_update(phi_real, residual_complex, dresidual_dphi_real):
-    """One Newton update in complex arithmetic after a real solve (complex-step totals).
-
-    With ``phi_real`` the converged real root, ``residual_complex`` the residual
-    evaluated at ``phi_real`` with the complex-perturbed inputs, and
-    ``dresidual_dphi_real`` the real total derivative dR/dphi, the update
-    ``phi = phi_real - R / R'`` has an imaginary part equal to
-    ``-(dR/dx h) / R'`` = ``(dphi/dx) h``: the exact implicit derivative.
-
-    Returns
-    -------
-    ndarray
-        Complex inflow angle.
-    """
-    return phi_real - residual_complex / dresidual_dphi_real
+        x0 = np.where((guess - lo) * (guess - hi) < 0.0, guess, x0)
+    result = bracketed_newton(residual, lo, hi, r_lo, x0, atol=tol, max_iter=max_iter)
+    first = result.first_failure()
+    if first is not None:
+        _check_finite(result.residual, np.arange(size), result.x, describe)
+        failed = np.count_nonzero(~result.converged)
+        raise om.AnalysisError(
+            f"BEM inflow solve did not converge in {max_iter} iterations at {describe(first)} "
+            f"({failed} station(s) in all); |R| = {np.abs(result.residual[first]):.3e}.")
+    return result.x

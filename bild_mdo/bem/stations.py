@@ -4,6 +4,8 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.utils.options import add_inputs, declare_size_options
+
 from bild_mdo.utils.sparsity import dist_wrt_node
 
 
@@ -101,8 +103,7 @@ class StationsComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations (axis 1)")
+        declare_size_options(self.options)
         self.options.declare("radial_fractions", default=None, allow_none=True,
                              desc="station radii as fractions of the tip radius, shape (nr,) or (nn, nr); "
                                   "None for midpoints of equal annuli")
@@ -114,8 +115,7 @@ class StationsComp(om.ExplicitComponent):
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
-        self.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius R")
-        self.add_input("hub_radius", val=np.full(nn, 0.1), units="m", desc="hub radius")
+        add_inputs(self, ("radius", "hub_radius"))
         self.add_output("radii", val=np.tile(np.linspace(0.2, 0.95, nr), (nn, 1)), units="m",
                         desc="radius of each station")
         self.add_output("dr", val=np.full((nn, nr), 0.1), units="m", desc="radial width of each station")

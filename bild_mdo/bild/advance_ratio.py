@@ -2,6 +2,8 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.constants import RPM_TO_REV_PER_S
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_node
 
 
@@ -13,12 +15,7 @@ class AdvanceRatioComp(om.ExplicitComponent):
     ratio (Algorithm 1, step 1); ``BILDGroup(input_mode='advance_ratio')``
     puts this component in front of the chain.
 
-    Options
-    -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations (unused here).
+    Options: the size ``num_nodes`` (:func:`~bild_mdo.utils.options.declare_size_options`).
 
     Inputs
     ------
@@ -36,25 +33,25 @@ class AdvanceRatioComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=1, desc="number of radial stations (unused)")
+        declare_size_options(self.options, radial=False)
 
     def setup(self):
         nn = self.options["num_nodes"]
         self.add_input("advance_ratio", val=np.zeros(nn), units=None, desc="advance ratio J = V_x/(n D)")
-        self.add_input("rpm", val=np.full(nn, 1000.0), units="rpm", desc="rotor speed")
-        self.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius")
-        self.add_output("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
+        add_inputs(self, ("rpm", "radius"))
+        add_outputs(self, ("v_axial",))
 
     def setup_partials(self):
         rows, cols = node_wrt_node(self.options["num_nodes"])
         self.declare_partials("v_axial", ["advance_ratio", "rpm", "radius"], rows=rows, cols=cols)
 
     def compute(self, inputs, outputs):
-        outputs["v_axial"] = inputs["advance_ratio"] * inputs["rpm"] / 60.0 * 2.0 * inputs["radius"]
+        outputs["v_axial"] = inputs["advance_ratio"] * inputs["rpm"] * RPM_TO_REV_PER_S * 2.0 * inputs["radius"]
 
     def compute_partials(self, inputs, partials):
         j, rpm, radius = inputs["advance_ratio"], inputs["rpm"], inputs["radius"]
-        partials["v_axial", "advance_ratio"] = rpm * radius / 30.0
-        partials["v_axial", "rpm"] = j * radius / 30.0
-        partials["v_axial", "radius"] = j * rpm / 30.0
+        # d/dx of V_x = J n D with n = rpm RPM_TO_REV_PER_S and D = 2 R.
+        two_n_per_rpm = 2.0 * RPM_TO_REV_PER_S
+        partials["v_axial", "advance_ratio"] = two_n_per_rpm * rpm * radius
+        partials["v_axial", "rpm"] = two_n_per_rpm * j * radius
+        partials["v_axial", "radius"] = two_n_per_rpm * j * rpm

@@ -6,7 +6,8 @@ import openmdao.api as om
 
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.atmosphere import AtmosphereComp
-from bild_mdo.bem.performance import PERFORMANCE_OUTPUTS, RotorPerformanceComp
+from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
+from bild_mdo.bem.performance import RotorPerformanceComp
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.stations import StationsComp
 from bild_mdo.bild.advance_ratio import AdvanceRatioComp
@@ -16,12 +17,13 @@ from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
+from bild_mdo.bild.momentum_loads import MomentumLoadsComp
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp, default_polar
 from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
-from bild_mdo.bild.reference_station import SECTION_INPUTS, ReferenceStationComp
+from bild_mdo.bild.reference_station import REFERENCE_INPUTS, ReferenceStationComp
 from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
 from bild_mdo.bild.rotational_speed import RotationalSpeedComp
-from bild_mdo.bild.sectional_loads import SectionalLoadsComp
+from bild_mdo.utils.options import declare_size_options
 
 INPUT_MODES = ("v_axial", "advance_ratio")
 
@@ -53,12 +55,12 @@ class BILDGroup(om.Group):
         rotational_speed            V_theta = Omega r, Omega r_ref
         reference_airfoil           Re_ref -> alpha*, C_l*, C_d*                       step 1
         reference_station           BEM inflow angle at r_ref with c_ref (implicit)     step 2
-        reference_induced_velocity  u_x, u_theta at r_ref, Eq. (8)                      step 2
+        reference_induced_velocity  u_axial, u_theta at r_ref, Eq. (8)                  step 2
         ideal_loading               lambda, Eq. (22)                                    step 3
         eta2                        quartic, Eq. (27) (implicit)                        step 4
-        induced_velocity            u_x, u_theta, Eqs. (26), (24)                       step 5
+        induced_velocity            u_axial, u_theta, Eqs. (26), (24)                   step 5
         inflow_angle                phi, W, twist, Eq. (30)                             step 7
-        sectional_loads             F, dT/dr, dQ/dr, dE/dr, Eqs. (1), (2), (12)         step 6
+        momentum_loads              F, dT/dr, dQ/dr, dE/dr, Eqs. (1), (2), (12)         step 6
         chord                       Eq. (31) (or the torque form)                       step 7
         root_chord_correction       Eq. (32) (optional)
         performance                 T, Q, P, eta, FM, C_T, C_Q, C_P, E, sigma_r, C_T/sigma_r (Table 2)
@@ -76,7 +78,7 @@ class BILDGroup(om.Group):
       station is unloaded the rotor has no torque and the performance
       component raises :class:`openmdao.api.AnalysisError`.
     * Forward flight: every station must produce thrust (Assumption 3,
-      ``u_x > V_x``), which needs ``V_x < eta2 V_theta C_l*/C_d*``.  Inboard
+      ``u_axial > V_x``), which needs ``V_x < eta2 V_theta C_l*/C_d*``.  Inboard
       stations at a high advance ratio with a low-L/D airfoil break it;
       ``induced_velocity`` then raises :class:`openmdao.api.AnalysisError`
       naming the node and station (remedies: a larger ``hub_radius_ratio``, a
@@ -86,10 +88,8 @@ class BILDGroup(om.Group):
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points (axis 0).
-    num_radial : int
-        Number of radial stations (axis 1).
+    num_nodes, num_radial : int
+        Designs / operating points (axis 0) and radial stations (axis 1).
     num_blades : int
         Number of blades B (default 3).
     polar : Polar or None
@@ -131,20 +131,19 @@ class BILDGroup(om.Group):
         Blade geometry (after / before the root-chord correction).
     radii[nn, nr] (m), dr[nn, nr] (m)
         Stations.
-    phi, inflow_velocity, u_x, u_theta, eta2, loss_factor, dthrust_dr, dtorque_dr,
+    phi, inflow_speed, u_axial, u_theta, eta2, loss_factor, dthrust_dr, dtorque_dr,
     denergy_loss_dr, lift_coefficient, drag_coefficient : [nn, nr]
         Distributions of the ideal rotor.
     thrust, torque, power, efficiency, figure_of_merit, thrust_coefficient,
     torque_coefficient, power_coefficient, energy_loss, solidity, blade_loading : [nn]
         Performance (Table 2).
-    alpha_star, cl_star, cd_star, reynolds_ref, phi_ref, u_x_ref, u_theta_ref,
+    alpha_star, cl_star, cd_star, reynolds_ref, phi_ref, u_axial_ref, u_theta_ref,
     ideal_loading_constant, v_axial (advance-ratio mode), rho, mu : [nn]
         Intermediate per-design quantities.
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=20, desc="number of radial stations")
+        declare_size_options(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("polar", default=None, allow_none=True, recordable=False, check_valid=_check_polar,
                              desc="airfoil Polar; None selects the built-in NACA 4412")
@@ -165,6 +164,8 @@ class BILDGroup(om.Group):
     def setup(self):
         opts = self.options
         nn, nr, b = opts["num_nodes"], opts["num_radial"], opts["num_blades"]
+        # Per-design components get num_nodes only; components with stations also get num_radial.
+        node = dict(num_nodes=nn)
         size = dict(num_nodes=nn, num_radial=nr)
         polar = default_polar() if opts["polar"] is None else opts["polar"]
         loss = dict(num_blades=b, loss_model=opts["loss_model"])
@@ -172,9 +173,9 @@ class BILDGroup(om.Group):
         self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
                            promotes_outputs=["rho", "mu"])
         if opts["input_mode"] == "advance_ratio":
-            self.add_subsystem("advance_ratio", AdvanceRatioComp(**size),
+            self.add_subsystem("advance_ratio", AdvanceRatioComp(**node),
                                promotes_inputs=["advance_ratio", "rpm", "radius"], promotes_outputs=["v_axial"])
-        self.add_subsystem("geometry", GeometryComp(**size),
+        self.add_subsystem("geometry", GeometryComp(**node),
                            promotes_inputs=["radius", "hub_radius_ratio", "ref_radius_ratio"],
                            promotes_outputs=["hub_radius", "ref_radius"])
         self.add_subsystem("stations", StationsComp(**size, radial_fractions=opts["radial_fractions"],
@@ -183,33 +184,33 @@ class BILDGroup(om.Group):
         self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
                            promotes_inputs=["rpm", "radii", "ref_radius"],
                            promotes_outputs=["v_theta", "v_theta_ref"])
-        self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**size, polar=polar),
+        self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**node, polar=polar),
                            promotes_inputs=["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"],
                            promotes_outputs=["reynolds_ref", "alpha_star", "cl_star", "cd_star"])
-        self.add_subsystem("reference_station", ReferenceStationComp(**size, **loss),
-                           promotes_inputs=list(SECTION_INPUTS), promotes_outputs=["phi_ref"])
-        self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**size, **loss),
-                           promotes_inputs=["phi_ref"] + list(SECTION_INPUTS),
-                           promotes_outputs=["u_x_ref", "u_theta_ref"])
-        self.add_subsystem("ideal_loading", IdealLoadingComp(**size),
-                           promotes_inputs=["u_x_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
+        self.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
+                           promotes_inputs=list(REFERENCE_INPUTS), promotes_outputs=["phi_ref"])
+        self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
+                           promotes_inputs=["phi_ref"] + list(REFERENCE_INPUTS),
+                           promotes_outputs=["u_axial_ref", "u_theta_ref"])
+        self.add_subsystem("ideal_loading", IdealLoadingComp(**node),
+                           promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
                            promotes_outputs=["ideal_loading_constant"])
         self.add_subsystem("eta2", Eta2Comp(**size),
                            promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
                            promotes_outputs=["eta2"])
         self.add_subsystem("induced_velocity", InducedVelocityComp(**size),
                            promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
-                           promotes_outputs=["u_x", "u_theta"])
+                           promotes_outputs=["u_axial", "u_theta"])
         self.add_subsystem("inflow_angle", InflowAngleComp(**size),
-                           promotes_inputs=["u_x", "u_theta", "v_theta", "alpha_star"],
-                           promotes_outputs=["phi", "inflow_velocity", "twist"])
-        self.add_subsystem("sectional_loads", SectionalLoadsComp(**size, **loss),
-                           promotes_inputs=["u_x", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
+                           promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
+                           promotes_outputs=["phi", "inflow_speed", "twist"])
+        self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss),
+                           promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
                                             "hub_radius"],
                            promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
         chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
         self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"]),
-                           promotes_inputs=chord_load + ["phi", "inflow_velocity", "rho", "cl_star", "cd_star"],
+                           promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
                            promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
         self.add_subsystem("root_chord_correction",
                            RootChordCorrectionComp(**size, correction_constant=opts["root_chord_correction"]),

@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 CHORD_FORMS = ("thrust", "torque")
@@ -29,12 +30,8 @@ class ChordComp(om.ExplicitComponent):
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations.
-    num_blades : int
-        Number of blades B.
+    num_nodes, num_radial, num_blades : int
+        Sizes (:func:`~bild_mdo.utils.options.declare_size_options`) and the number of blades B.
     chord_form : str
         ``'thrust'`` (Eq. (31), default) or ``'torque'``.
 
@@ -48,7 +45,7 @@ class ChordComp(om.ExplicitComponent):
         Station radii (torque form only).
     phi[nn, nr] (rad)
         Inflow angle.
-    inflow_velocity[nn, nr] (m/s)
+    inflow_speed[nn, nr] (m/s)
         Resultant inflow speed W.
     rho[nn] (kg/m**3)
         Air density.
@@ -64,43 +61,24 @@ class ChordComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+        declare_size_options(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("chord_form", default="thrust", values=CHORD_FORMS,
                              desc="'thrust': Eq. (31) from dT/dr; 'torque': Eq. (6) from dQ/dr")
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
         if self.options["chord_form"] == "thrust":
-            self.add_input("dthrust_dr", val=np.ones((nn, nr)), units="N/m",
-                           desc="sectional thrust dT/dr")
+            add_inputs(self, ("dthrust_dr",))
         else:
-            self.add_input("dtorque_dr", val=np.ones((nn, nr)), units="N*m/m",
-                           desc="sectional torque dQ/dr")
-            self.add_input("radii", val=np.ones((nn, nr)), units="m", desc="radii of the blade stations")
-        self.add_input("phi", val=np.full((nn, nr), 0.1), units="rad", desc="inflow angle")
-        self.add_input("inflow_velocity", val=np.full((nn, nr), 50.0), units="m/s",
-                       desc="resultant inflow speed W")
-        self.add_input("rho", val=np.full(nn, 1.225), units="kg/m**3", desc="air density")
-        self.add_input("cl_star", val=np.ones(nn), units=None,
-                       desc="lift coefficient at the maximum lift-to-drag ratio")
-        self.add_input("cd_star", val=np.full(nn, 0.01), units=None,
-                       desc="drag coefficient at the maximum lift-to-drag ratio")
-        self.add_output("chord_raw", val=np.full((nn, nr), 0.1), units="m",
-                        desc="back-computed chord before the root-chord correction, Eq. (31)")
-        self.add_output("lift_coefficient", val=np.ones((nn, nr)), units=None,
-                        desc="section lift coefficient (C_l* at every station)")
-        self.add_output("drag_coefficient", val=np.full((nn, nr), 0.01), units=None,
-                        desc="section drag coefficient (C_d* at every station)")
+            add_inputs(self, ("dtorque_dr", "radii"))
+        add_inputs(self, ("phi", "inflow_speed", "rho", "cl_star", "cd_star"))
+        add_outputs(self, ("chord_raw", "lift_coefficient", "drag_coefficient"))
 
     def setup_partials(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
         rows, cols = dist_wrt_dist(nn, nr)
         load = "dthrust_dr" if self.options["chord_form"] == "thrust" else "dtorque_dr"
-        wrt = [load, "phi", "inflow_velocity"]
+        wrt = [load, "phi", "inflow_speed"]
         if self.options["chord_form"] == "torque":
             wrt.append("radii")
         self.declare_partials("chord_raw", wrt, rows=rows, cols=cols)
@@ -116,7 +94,7 @@ class ChordComp(om.ExplicitComponent):
         cl = inputs["cl_star"][:, None]
         cd = inputs["cd_star"][:, None]
         sin, cos = np.sin(phi), np.cos(phi)
-        scale = inputs["rho"][:, None] * inputs["inflow_velocity"] ** 2 * b
+        scale = inputs["rho"][:, None] * inputs["inflow_speed"] ** 2 * b
         if self.options["chord_form"] == "thrust":
             load = inputs["dthrust_dr"]
             coef = cl * cos - cd * sin
@@ -157,7 +135,7 @@ class ChordComp(om.ExplicitComponent):
         name = "dthrust_dr" if self.options["chord_form"] == "thrust" else "dtorque_dr"
         partials["chord_raw", name] = (2.0 / (coef * scale)).ravel()
         partials["chord_raw", "phi"] = (-chord * dcoef_dphi / coef).ravel()
-        partials["chord_raw", "inflow_velocity"] = (-2.0 * chord / inputs["inflow_velocity"]).ravel()
+        partials["chord_raw", "inflow_speed"] = (-2.0 * chord / inputs["inflow_speed"]).ravel()
         partials["chord_raw", "rho"] = (-chord / inputs["rho"][:, None]).ravel()
         partials["chord_raw", "cl_star"] = (-chord * dcoef_dcl / coef).ravel()
         partials["chord_raw", "cd_star"] = (-chord * dcoef_dcd / coef).ravel()

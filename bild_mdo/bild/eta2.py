@@ -2,15 +2,16 @@
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bild.quartic_coefficients import (
+from bild_mdo.bild.quartic import (
     physical_factor_term_partials,
     physical_factor_terms,
     quartic,
     quartic_partials,
 )
+from bild_mdo.utils.newton import bracketed_newton, complex_step_update, false_position
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
-_EPS = np.finfo(float).eps
 _MAX_ITERATIONS = 200
 
 
@@ -80,12 +81,14 @@ def _validate(v_axial, v_theta, lam, cl, cd, index_names):
 
 
 def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
-    """Vectorised safeguarded Newton solve on 1-D arrays; returns ``(eta2, converged)``."""
+    """Bracket [0.5, 1] per element and solve with :func:`~bild_mdo.utils.newton.bracketed_newton`.
+
+    Returns ``(eta2, converged)`` on 1-D arrays.
+    """
     n = v_axial.size
     hover = v_axial * lam == 0.0
     lo = np.full(n, 0.5)
     hi = np.ones(n)
-    eta = np.ones(n)
     f_lo, _, _ = _bracket_function(lo, v_axial, v_theta, lam, drag_to_lift, hover)
     # Exact values at eta = 1 (hand derivations, asserted in derive_quartic.derive): P(1) away from hover, C(1) in it.
     sv = drag_to_lift * v_theta
@@ -93,37 +96,20 @@ def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
                     -lam * v_axial * (v_axial + 2.0 * sv) * (lam + v_axial + sv))
     unloaded = hover & ~(f_hi < 0.0)
     # P(0.5) > 0 analytically; a station without a bracket is reported, never guessed.
-    has_bracket = f_lo > 0.0
+    active = np.flatnonzero(~unloaded & (f_lo > 0.0))
+    eta = np.ones(n)
     converged = unloaded.copy()
-    active = np.flatnonzero(~unloaded & has_bracket)
-    x = lo[active] + f_lo[active] * 0.5 / (f_lo[active] - f_hi[active])
-    x = np.clip(x, 0.5 + 1e-3, 1.0 - 1e-12)
-    step_before = np.full(active.size, 0.5)
-    for _ in range(_MAX_ITERATIONS):
-        if active.size == 0:
-            break
-        vx, vt, lm, s, hv = v_axial[active], v_theta[active], lam[active], drag_to_lift[active], hover[active]
-        f, df, f_scale = _bracket_function(x, vx, vt, lm, s, hv)
-        lo_a = np.where(f > 0.0, x, lo[active])
-        hi_a = np.where(f < 0.0, x, hi[active])
-        lo[active], hi[active] = lo_a, hi_a
-        with np.errstate(divide="ignore", invalid="ignore"):
-            newton_step = f / df
-        newton = x - newton_step
-        use_newton = (newton >= lo_a) & (newton <= hi_a) & (np.abs(newton_step) <= 0.5 * step_before)
-        x_new = np.where(use_newton, newton, 0.5 * (lo_a + hi_a))
-        step = np.abs(x_new - x)
-        # Stop when f is zero to round-off (a further "Newton" step would only follow noise), when the
-        # Newton correction is below round-off, or when the bracket has shrunk to round-off.
-        at_root = np.abs(f) <= 4.0 * _EPS * f_scale
-        done = (at_root | (use_newton & (step <= 2.0 * _EPS * x_new))
-                | (hi_a - lo_a <= 4.0 * _EPS * hi_a))
-        x_new = np.where(at_root, x, x_new)
-        eta[active[done]] = x_new[done]
-        converged[active[done]] = True
-        keep = ~done
-        active, x = active[keep], x_new[keep]
-        step_before = step[keep]
+    if active.size == 0:
+        return eta, converged
+    x0 = np.clip(false_position(lo[active], hi[active], f_lo[active], f_hi[active]), 0.5 + 1e-3, 1.0 - 1e-12)
+
+    def function(x, idx):
+        at = active[idx]
+        return _bracket_function(x, v_axial[at], v_theta[at], lam[at], drag_to_lift[at], hover[at])
+
+    result = bracketed_newton(function, lo[active], hi[active], f_lo[active], x0, max_iter=_MAX_ITERATIONS)
+    eta[active] = result.x
+    converged[active] = result.converged
     return eta, converged
 
 
@@ -132,16 +118,16 @@ def solve_eta2(v_axial, v_theta, lam, cl, cd, index_names=None):
 
     Each element is the unique root in (0.5, 1) of the quartic ``P`` (and of
     its physical factor ``h``: ``P = h k`` with ``k > 0`` on [0.5, 1]), so it
-    satisfies Eq. (22) with ``u_x`` from Eq. (26) and ``u_theta`` from
-    Eq. (24).  The solve is a vectorised safeguarded Newton iteration (Newton
-    steps kept inside a shrinking bracket, bisection otherwise) on [0.5, 1],
-    converged to round-off; see :func:`_bracket_function` for the function
-    it brackets.  The root is unique and the other real root of ``h`` near
+    satisfies Eq. (22) with ``u_axial`` from Eq. (26) and ``u_theta`` from
+    Eq. (24).  The solve is the package's vectorised safeguarded Newton
+    iteration (:func:`bild_mdo.utils.newton.bracketed_newton`) on the bracket
+    [0.5, 1], converged to round-off of the bracketed function's terms; see
+    :func:`_bracket_function` for the function it brackets.  The root is unique and the other real root of ``h`` near
     hover lies above 1, so it is never returned, however close it is.
 
     Hover (``V_x == 0``): the station carries load only if
     ``lam > V_theta C_d / (2 C_l)``; otherwise there is no root in (0.5, 1)
-    and the station is unloaded: eta2 = 1 (``u_x = u_theta = 0``), the limit
+    and the station is unloaded: eta2 = 1 (``u_axial = u_theta = 0``), the limit
     of the root as ``V_x -> 0+``.
 
     Parameters
@@ -190,27 +176,23 @@ class Eta2Comp(om.ImplicitComponent):
         R = P(eta2; V_x, V_theta, lam, s) / (V_theta**2 + V_x**2 + lam**2)**2,   s = C_d*/C_l*,
 
     where ``P`` (in (m/s)**4) is the quartic derived in
-    :mod:`bild_mdo.bild.derive_quartic` from Eqs. (22), (24), (26) (the
+    :mod:`tools.derive_quartic` from Eqs. (22), (24), (26) (the
     paper's printed Eq. (34) is misprinted; see
-    :mod:`bild_mdo.bild.quartic_coefficients`).  The positive per-point scale
+    :mod:`bild_mdo.bild.quartic`).  The positive per-point scale
     has the units of ``P`` and makes ``R`` O(1) at hub and tip alike; it is
     included in the partials.
 
     ``solve_nonlinear`` finds the unique root in (0.5, 1) by a vectorised,
     bracketed, safeguarded Newton solve (:func:`solve_eta2`).  In hover
     (``V_x == 0``) a station is loaded only if ``lam > V_theta C_d/(2 C_l)``;
-    otherwise it is unloaded and ``eta2 = 1`` (``u_x = u_theta = 0``), the
+    otherwise it is unloaded and ``eta2 = 1`` (``u_axial = u_theta = 0``), the
     limit of the root as ``V_x -> 0+``, which is still a simple root of ``P``,
     so the linearization stays finite and consistent there.  Under complex
     step one Newton update in complex arithmetic on ``P`` carries the exact
     derivative in the imaginary part.
 
-    Options
-    -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations.
+    Options: the sizes ``num_nodes`` and ``num_radial``
+    (:func:`~bild_mdo.utils.options.declare_size_options`).
 
     Inputs
     ------
@@ -230,27 +212,14 @@ class Eta2Comp(om.ImplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+        declare_size_options(self.options)
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
-        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
-        self.add_input("v_theta", val=np.full((nn, nr), 50.0), units="m/s",
-                       desc="rotational blade speed Omega*r at the stations")
-        self.add_input("ideal_loading_constant", val=np.full(nn, 10.0), units="m/s",
-                       desc="ideal-loading constant lambda, Eq. (22)")
-        self.add_input("cl_star", val=np.ones(nn), units=None,
-                       desc="lift coefficient at the maximum lift-to-drag ratio")
-        self.add_input("cd_star", val=np.full(nn, 0.01), units=None,
-                       desc="drag coefficient at the maximum lift-to-drag ratio")
-        self.add_output("eta2", val=np.full((nn, nr), 0.9), units=None,
-                        desc="annular efficiency for tangential induced losses, Eq. (23)")
+        add_inputs(self, ("v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"))
+        add_outputs(self, ("eta2",))
 
     def setup_partials(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
         rows, cols = dist_wrt_dist(nn, nr)
         self.declare_partials("eta2", ["eta2", "v_theta"], rows=rows, cols=cols)
         rows, cols = dist_wrt_node(nn, nr)
@@ -282,12 +251,9 @@ class Eta2Comp(om.ImplicitComponent):
         except ValueError as err:
             raise om.AnalysisError(f"{self.msginfo}: {err}") from err
         if self.under_complex_step:
-            # eta = eta_real - P(eta_real; complex inputs) / P'(eta_real; real inputs): only the imaginary part
-            # of the update is kept, so the real solution stays bit-identical to the real solve.
-            v_x, v_t, lam, s = self._arguments(inputs)
-            residual = quartic(eta, v_x, v_t, lam, s)
+            residual = quartic(eta, *self._arguments(inputs))
             slope = quartic_partials(eta, *self._arguments(real), wrt=("eta",))["eta"]
-            eta = eta - 1j * np.imag(residual) / slope
+            eta = complex_step_update(eta, residual, slope)
         outputs["eta2"] = eta
 
     def linearize(self, inputs, outputs, partials):

@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_node
 
 
@@ -13,13 +14,7 @@ class GeometryComp(om.ExplicitComponent):
     the user fixes the chord (paper Sec. 4, Algorithm 1, step 1), must lie on
     the blade: ``0 < hub_radius_ratio < ref_radius_ratio < 1``.
 
-    Options
-    -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations (unused here; kept so every BILD component
-        takes the same options).
+    Options: the size ``num_nodes`` (:func:`~bild_mdo.utils.options.declare_size_options`).
 
     Inputs
     ------
@@ -42,19 +37,16 @@ class GeometryComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=1, desc="number of radial stations")
+        declare_size_options(self.options, radial=False)
 
     def setup(self):
         nn = self.options["num_nodes"]
-        self.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius")
+        add_inputs(self, ("radius",))
         self.add_input("hub_radius_ratio", val=0.2 * np.ones(nn), units=None,
                        desc="hub radius divided by the tip radius")
         self.add_input("ref_radius_ratio", val=0.5 * np.ones(nn), units=None,
                        desc="reference-station radius divided by the tip radius")
-        self.add_output("hub_radius", val=0.2 * np.ones(nn), units="m", desc="hub radius")
-        self.add_output("ref_radius", val=0.5 * np.ones(nn), units="m",
-                        desc="radius of the reference station where the chord is prescribed")
+        add_outputs(self, ("hub_radius", "ref_radius"))
 
     def setup_partials(self):
         rows, cols = node_wrt_node(self.options["num_nodes"])

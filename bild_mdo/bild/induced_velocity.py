@@ -1,8 +1,9 @@
-"""Ideal induced velocities u_x, u_theta from the annular efficiency eta2 (Eqs. (24), (26))."""
+"""Ideal induced velocities u_axial, u_theta from the annular efficiency eta2 (Eqs. (24), (26))."""
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bild.quartic_coefficients import axial_velocity_root
+from bild_mdo.bild.quartic import axial_velocity_root
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 
@@ -14,31 +15,27 @@ class InducedVelocityComp(om.ExplicitComponent):
         u_theta = 2 V_theta (1 - eta2)                                  Eq. (24)
         b       = (V_x - V_theta s) / 2
         c       = eta2 V_theta (V_theta (1 - eta2) + V_x s)
-        u_x     = b + sqrt(b**2 + c)                                    Eq. (26)
+        u_axial     = b + sqrt(b**2 + c)                                    Eq. (26)
 
     ``c >= 0`` for ``0.5 <= eta2 <= 1``, so the root is real.  For ``b < 0``
     (always in hover) ``b + sqrt(b**2 + c)`` cancels when ``c`` is small
     (``eta2`` near 1); the root is then evaluated as ``c / (sqrt(b**2 + c) - b)``
-    (:func:`~bild_mdo.bild.quartic_coefficients.axial_velocity_root`).  An
-    unloaded station in hover (``eta2 = 1``, ``V_x = 0``) gives ``u_x = 0``
+    (:func:`~bild_mdo.bild.quartic.axial_velocity_root`).  An
+    unloaded station in hover (``eta2 = 1``, ``V_x = 0``) gives ``u_axial = 0``
     and ``u_theta = 0`` with finite derivatives (``sqrt(b**2 + c) = |b| > 0``).
 
-    Assumption 3 (positive local thrust, ``u_x > V_x``) is checked here:
-    ``u_x - V_x`` has the sign of ``(1 - eta2)(eta2 V_theta - s V_x)``
+    Assumption 3 (positive local thrust, ``u_axial > V_x``) is checked here:
+    ``u_axial - V_x`` has the sign of ``(1 - eta2)(eta2 V_theta - s V_x)``
     (hand derivation from Eq. (25)), so a loaded station needs
     ``V_x < eta2 V_theta C_l*/C_d*``.  It fails at inboard stations (small
     ``V_theta``) at a high advance ratio with a low-L/D airfoil; such a
     station would windmill, and the compute raises
     :class:`openmdao.api.AnalysisError` naming it.  The unloaded hover
-    station (``eta2 = 1``, ``V_x = 0``, so ``u_x = V_x = 0``) satisfies the
+    station (``eta2 = 1``, ``V_x = 0``, so ``u_axial = V_x = 0``) satisfies the
     rule and is legitimate.
 
-    Options
-    -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations.
+    Options: the sizes ``num_nodes`` and ``num_radial``
+    (:func:`~bild_mdo.utils.options.declare_size_options`).
 
     Inputs
     ------
@@ -53,41 +50,26 @@ class InducedVelocityComp(om.ExplicitComponent):
 
     Outputs
     -------
-    u_x[nn, nr] (m/s)
+    u_axial[nn, nr] (m/s)
         Axial velocity at the rotor disk (free stream plus induction), Eq. (26).
     u_theta[nn, nr] (m/s)
         Tangential induced velocity in the far wake, Eq. (24).
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+        declare_size_options(self.options)
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
-        self.add_input("eta2", val=0.95 * np.ones((nn, nr)), units=None,
-                       desc="annular efficiency for tangential induced losses, Eq. (23)")
-        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
-        self.add_input("v_theta", val=np.full((nn, nr), 50.0), units="m/s",
-                       desc="rotational blade speed Omega*r at the stations")
-        self.add_input("cl_star", val=np.ones(nn), units=None,
-                       desc="lift coefficient at the maximum lift-to-drag ratio")
-        self.add_input("cd_star", val=np.full(nn, 0.01), units=None,
-                       desc="drag coefficient at the maximum lift-to-drag ratio")
-        self.add_output("u_x", val=np.full((nn, nr), 5.0), units="m/s",
-                        desc="axial velocity at the rotor disk, Eq. (26)")
-        self.add_output("u_theta", val=np.ones((nn, nr)), units="m/s",
-                        desc="tangential induced velocity, Eq. (24)")
+        add_inputs(self, ("eta2", "v_axial", "v_theta", "cl_star", "cd_star"))
+        add_outputs(self, ("u_axial", "u_theta"))
 
     def setup_partials(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
         rows, cols = dist_wrt_dist(nn, nr)
-        self.declare_partials("u_x", ["eta2", "v_theta"], rows=rows, cols=cols)
+        self.declare_partials("u_axial", ["eta2", "v_theta"], rows=rows, cols=cols)
         self.declare_partials("u_theta", ["eta2", "v_theta"], rows=rows, cols=cols)
         rows, cols = dist_wrt_node(nn, nr)
-        self.declare_partials("u_x", ["v_axial", "cl_star", "cd_star"], rows=rows, cols=cols)
+        self.declare_partials("u_axial", ["v_axial", "cl_star", "cd_star"], rows=rows, cols=cols)
 
     def _terms(self, inputs):
         eta2 = inputs["eta2"]
@@ -99,7 +81,7 @@ class InducedVelocityComp(om.ExplicitComponent):
         return eta2, v_t, v_x, s, b, c
 
     def _check_positive_thrust(self, eta2, v_t, v_x, s):
-        """Raise unless ``V_x < eta2 V_theta / s`` (Assumption 3, ``u_x > V_x``) at every station."""
+        """Raise unless ``V_x < eta2 V_theta / s`` (Assumption 3, ``u_axial > V_x``) at every station."""
         eta2, v_t, v_x, s = (np.real(a) for a in (eta2, v_t, v_x, s))
         limit = eta2 * v_t / s
         bad = ~(v_x < limit)
@@ -107,7 +89,7 @@ class InducedVelocityComp(om.ExplicitComponent):
             return
         node, station = (int(i) for i in np.argwhere(bad)[0])
         raise om.AnalysisError(
-            f"{self.msginfo}: Assumption 3 (u_x > V_x, positive local thrust) fails at {int(np.sum(bad))} "
+            f"{self.msginfo}: Assumption 3 (u_axial > V_x, positive local thrust) fails at {int(np.sum(bad))} "
             f"station(s), first at node {node}, station {station} (V_theta = {v_t[node, station]:.6g} m/s, "
             f"eta2 = {eta2[node, station]:.6g}, V_x = {v_x[node, 0]:.6g} m/s, "
             f"C_l*/C_d* = {1.0 / s[node, 0]:.6g}): it needs V_x < eta2 V_theta C_l*/C_d* "
@@ -118,12 +100,12 @@ class InducedVelocityComp(om.ExplicitComponent):
     def compute(self, inputs, outputs):
         eta2, v_t, v_x, s, b, c = self._terms(inputs)
         self._check_positive_thrust(eta2, v_t, v_x, s)
-        outputs["u_x"] = axial_velocity_root(b, c)[0]  # Eq. (26)
+        outputs["u_axial"] = axial_velocity_root(b, c)[0]  # Eq. (26)
         outputs["u_theta"] = 2.0 * v_t * (1.0 - eta2)
 
     def compute_partials(self, inputs, partials):
         eta2, v_t, v_x, s, b, c = self._terms(inputs)
-        u_x, root = axial_velocity_root(b, c)
+        u_axial, root = axial_velocity_root(b, c)
         cl = inputs["cl_star"][:, None]
         cd = inputs["cd_star"][:, None]
 
@@ -133,12 +115,12 @@ class InducedVelocityComp(om.ExplicitComponent):
         dc_dvx = eta2 * v_t * s
         dc_dvt = eta2 * (2.0 * v_t * (1.0 - eta2) + v_x * s)
         dc_ds = eta2 * v_t * v_x
-        dux_ds = (-u_x * v_t + dc_ds) * inv_two_root
+        dux_ds = (-u_axial * v_t + dc_ds) * inv_two_root
 
-        partials["u_x", "eta2"] = (dc_deta2 * inv_two_root).ravel()
-        partials["u_x", "v_axial"] = ((u_x + dc_dvx) * inv_two_root).ravel()
-        partials["u_x", "v_theta"] = ((-u_x * s + dc_dvt) * inv_two_root).ravel()
-        partials["u_x", "cl_star"] = (dux_ds * (-cd / cl ** 2)).ravel()
-        partials["u_x", "cd_star"] = (dux_ds / cl).ravel()
+        partials["u_axial", "eta2"] = (dc_deta2 * inv_two_root).ravel()
+        partials["u_axial", "v_axial"] = ((u_axial + dc_dvx) * inv_two_root).ravel()
+        partials["u_axial", "v_theta"] = ((-u_axial * s + dc_dvt) * inv_two_root).ravel()
+        partials["u_axial", "cl_star"] = (dux_ds * (-cd / cl ** 2)).ravel()
+        partials["u_axial", "cd_star"] = (dux_ds / cl).ravel()
         partials["u_theta", "eta2"] = (-2.0 * v_t).ravel()
         partials["u_theta", "v_theta"] = (2.0 * (1.0 - eta2)).ravel()

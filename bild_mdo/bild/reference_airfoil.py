@@ -2,14 +2,14 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_node
 
 
 def default_polar():
     """The built-in NACA 4412 polar, BILD's default airfoil (paper Sec. 5.2)."""
-    from bild_mdo.airfoil import naca4412
-
-    return naca4412()
+    return resolve_polar("naca4412")
 
 
 class ReferenceAirfoilComp(om.ExplicitComponent):
@@ -34,8 +34,6 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
     -------
     num_nodes : int
         Number of designs / operating points.
-    num_radial : int
-        Number of radial stations (unused here).
     polar : Polar or None
         Airfoil polar (``bild_mdo.airfoil.polar.Polar``); ``None`` selects the
         built-in NACA 4412.
@@ -66,8 +64,7 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=1, desc="number of radial stations (unused)")
+        declare_size_options(self.options, radial=False)
         self.options.declare("polar", default=None, allow_none=True, recordable=False,
                              desc="airfoil Polar object; None selects the built-in NACA 4412")
 
@@ -75,20 +72,10 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
         nn = self.options["num_nodes"]
         polar = self.options["polar"]
         self._polar = default_polar() if polar is None else polar
-        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
-        self.add_input("v_theta_ref", val=np.full(nn, 50.0), units="m/s",
-                       desc="rotational speed Omega*r_ref at the reference station")
-        self.add_input("ref_chord", val=np.full(nn, 0.1), units="m", desc="chord at the reference station")
-        self.add_input("rho", val=np.full(nn, 1.225), units="kg/m**3", desc="air density")
-        self.add_input("mu", val=np.full(nn, 1.81e-5), units="Pa*s", desc="dynamic viscosity of air")
+        add_inputs(self, ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu"))
         self.add_output("reynolds_ref", val=np.full(nn, 3e5), units=None,
                         desc="chord Reynolds number at the reference station (speed without induction)")
-        self.add_output("alpha_star", val=np.full(nn, 0.1), units="rad",
-                        desc="angle of attack of maximum lift-to-drag ratio")
-        self.add_output("cl_star", val=np.full(nn, 1.0), units=None,
-                        desc="lift coefficient at the maximum lift-to-drag ratio")
-        self.add_output("cd_star", val=np.full(nn, 0.01), units=None,
-                        desc="drag coefficient at the maximum lift-to-drag ratio")
+        add_outputs(self, ("alpha_star", "cl_star", "cd_star"))
 
     def setup_partials(self):
         rows, cols = node_wrt_node(self.options["num_nodes"])

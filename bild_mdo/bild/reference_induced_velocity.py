@@ -1,11 +1,11 @@
 """Induced velocities at the reference station from its solved inflow angle (Eq. (8) with F)."""
-import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bem.blade_element import add_section_inputs
 from bild_mdo.bem.inflow_residual import induced_velocities
-from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.bild.reference_station import (SECTION_INPUTS, add_section_inputs, reference_section,
+from bild_mdo.bild.reference_station import (REFERENCE_INPUTS, declare_reference_options, reference_section,
                                              section_partials, section_wrt)
+from bild_mdo.utils.options import add_outputs
 from bild_mdo.utils.sparsity import node_wrt_node
 
 
@@ -16,64 +16,42 @@ class ReferenceInducedVelocityComp(om.ExplicitComponent):
 
         D       = 4 F sin(phi) cos(phi) + sigma C_theta
         u_theta = 2 sigma C_theta V_theta / D
-        u_x     = V_x + sigma C_x V_theta / D
+        u_axial = V_x + sigma C_x V_theta / D
 
     at ``phi = phi_ref`` with ``C_l*``, ``C_d*`` fixed.  They define the
     ideal-loading constant (Eq. (22)).
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations (unused here).
-    num_blades : int
-        Number of blades B.
-    loss_model : str
-        ``'tip_hub'`` (default), ``'tip'`` or ``'none'``.
+    num_nodes, num_blades, loss_model
+        Those of :class:`~bild_mdo.bild.reference_station.ReferenceStationComp`.
 
     Inputs
     ------
     phi_ref[nn] (rad)
-        Inflow angle at the reference station.
-    v_axial[nn] (m/s), v_theta_ref[nn] (m/s)
-        Axial free-stream velocity, ``Omega r_ref``.
-    ref_radius[nn] (m), ref_chord[nn] (m)
-        Reference station radius and chord.
-    radius[nn] (m), hub_radius[nn] (m)
-        Tip and hub radii (Prandtl loss factor).
-    cl_star[nn] (-), cd_star[nn] (-)
-        Lift and drag coefficients at the maximum lift-to-drag ratio.
+        Inflow angle at the reference station, and the reference-section inputs
+        of :class:`~bild_mdo.bild.reference_station.ReferenceStationComp`
+        (:data:`~bild_mdo.bild.reference_station.REFERENCE_INPUTS`).
 
     Outputs
     -------
-    u_x_ref[nn] (m/s)
+    u_axial_ref[nn] (m/s)
         Axial velocity at the disk at the reference station.
     u_theta_ref[nn] (m/s)
         Tangential induced velocity at the reference station.
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=1, desc="number of radial stations (unused)")
-        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
-        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
-                             desc="Prandtl losses: 'tip_hub', 'tip' or 'none'")
+        declare_reference_options(self.options)
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        self.add_input("phi_ref", val=np.full(nn, 0.1), units="rad",
-                       desc="inflow angle at the reference station")
-        add_section_inputs(self, nn)
-        self.add_output("u_x_ref", val=np.full(nn, 5.0), units="m/s",
-                        desc="axial velocity at the rotor disk at the reference station, Eq. (8)")
-        self.add_output("u_theta_ref", val=np.ones(nn), units="m/s",
-                        desc="tangential induced velocity at the reference station, Eq. (8)")
+        add_section_inputs(self, ("phi_ref",) + REFERENCE_INPUTS)
+        add_outputs(self, ("u_axial_ref", "u_theta_ref"))
 
     def setup_partials(self):
         rows, cols = node_wrt_node(self.options["num_nodes"])
         wrt = ["phi_ref"] + section_wrt(self.options["loss_model"])
-        self.declare_partials("u_x_ref", wrt, rows=rows, cols=cols)
+        self.declare_partials("u_axial_ref", wrt, rows=rows, cols=cols)
         self.declare_partials("u_theta_ref", [name for name in wrt if name != "v_axial"],
                               rows=rows, cols=cols)
 
@@ -86,12 +64,12 @@ class ReferenceInducedVelocityComp(om.ExplicitComponent):
 
     def compute(self, inputs, outputs):
         _, vel = self._velocities(inputs)
-        outputs["u_x_ref"] = vel.u_axial
+        outputs["u_axial_ref"] = vel.u_axial
         outputs["u_theta_ref"] = vel.u_theta
 
     def compute_partials(self, inputs, partials):
         model = self.options["loss_model"]
-        section, vel = self._velocities({name: inputs[name] for name in ("phi_ref",) + SECTION_INPUTS})
+        section, vel = self._velocities({name: inputs[name] for name in ("phi_ref",) + REFERENCE_INPUTS})
         axial = section_partials(vel.du_axial_dphi, vel.du_axial_dsigma, vel.du_axial_dF,
                                  vel.du_axial_dv_axial, vel.du_axial_dv_theta, vel.du_axial_dcl,
                                  vel.du_axial_dcd, section, model)
@@ -99,7 +77,7 @@ class ReferenceInducedVelocityComp(om.ExplicitComponent):
                                       vel.du_theta_dv_axial, vel.du_theta_dv_theta, vel.du_theta_dcl,
                                       vel.du_theta_dcd, section, model)
         for name, value in axial.items():
-            partials["u_x_ref", "phi_ref" if name == "phi" else name] = value
+            partials["u_axial_ref", "phi_ref" if name == "phi" else name] = value
         for name, value in tangential.items():
             if name != "v_axial":
                 partials["u_theta_ref", "phi_ref" if name == "phi" else name] = value

@@ -1,17 +1,25 @@
-"""The one BEM solve of BILD: inflow angle at the reference station (Algorithm 1, step 2)."""
+"""The one BEM solve of BILD: inflow angle at the reference station (Algorithm 1, step 2).
+
+The reference station is one blade element (:mod:`bild_mdo.bem.blade_element`)
+with ``C_l = C_l*`` and ``C_d = C_d*`` fixed: its options, inputs and loss-model
+wiring are the BEM kernel's, and its inflow angle solves the same residual
+with the same bracketed solver.
+"""
 from typing import NamedTuple
 
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bem.blade_element import add_section_inputs, declare_section_options
 from bild_mdo.bem.inflow_residual import inflow_residual, inflow_residual_value
-from bild_mdo.bem.prandtl import LOSS_MODELS, prandtl_loss
-from bild_mdo.bem.root_finding import complex_newton_update, solve_bracketed
+from bild_mdo.bem.prandtl import loss_inputs, loss_partials, prandtl_loss
+from bild_mdo.bem.root_finding import solve_bracketed
+from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.sparsity import node_wrt_node
 
 #: Inputs of the reference-station section, shared by the solve and the induced velocities.
-SECTION_INPUTS = ("v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius",
-                  "cl_star", "cd_star")
+REFERENCE_INPUTS = ("v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius",
+                    "cl_star", "cd_star")
 
 
 class ReferenceSection(NamedTuple):
@@ -31,7 +39,7 @@ def reference_section(phi, inputs, num_blades, loss_model):
     phi : ndarray
         Inflow angle at the reference station (rad), shape ``(nn,)``.
     inputs : mapping
-        Values of :data:`SECTION_INPUTS`, shape ``(nn,)`` each.
+        Values of :data:`REFERENCE_INPUTS`, shape ``(nn,)`` each.
     num_blades : int
         Number of blades B.
     loss_model : str
@@ -47,19 +55,9 @@ def reference_section(phi, inputs, num_blades, loss_model):
     return ReferenceSection(sigma, num_blades / (2.0 * np.pi * r_ref), -sigma / r_ref, loss)
 
 
-def add_section_inputs(comp, nn):
-    """Declare :data:`SECTION_INPUTS` on ``comp`` (used by both reference-station components)."""
-    comp.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial free-stream velocity")
-    comp.add_input("v_theta_ref", val=np.full(nn, 50.0), units="m/s",
-                   desc="rotational speed Omega*r_ref at the reference station")
-    comp.add_input("ref_radius", val=np.full(nn, 0.5), units="m", desc="radius of the reference station")
-    comp.add_input("ref_chord", val=np.full(nn, 0.1), units="m", desc="chord at the reference station")
-    comp.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius")
-    comp.add_input("hub_radius", val=np.full(nn, 0.2), units="m", desc="hub radius")
-    comp.add_input("cl_star", val=np.ones(nn), units=None,
-                   desc="lift coefficient at the maximum lift-to-drag ratio")
-    comp.add_input("cd_star", val=np.full(nn, 0.01), units=None,
-                   desc="drag coefficient at the maximum lift-to-drag ratio")
+def declare_reference_options(options):
+    """Options of a reference-station component: the blade element's, without stations or polar."""
+    declare_section_options(options, radial=False, polar=False)
 
 
 def section_partials(d_dphi, d_dsigma, d_dF, d_dv_axial, d_dv_theta, d_dcl, d_dcd, section, loss_model):
@@ -71,31 +69,23 @@ def section_partials(d_dphi, d_dsigma, d_dF, d_dv_axial, d_dv_theta, d_dcl, d_dc
         ``{'phi': ..., input name: ...}``; the loss-factor partials appear only
         for the inputs the loss model depends on.
     """
-    loss = section.loss
     out = {
-        "phi": d_dphi + d_dF * loss.dF_dphi,
+        "phi": d_dphi,
         "v_axial": d_dv_axial,
         "v_theta_ref": d_dv_theta,
         "ref_chord": d_dsigma * section.dsigma_dref_chord,
-        "ref_radius": d_dsigma * section.dsigma_dref_radius + d_dF * loss.dF_dr,
+        "ref_radius": d_dsigma * section.dsigma_dref_radius,
         "cl_star": d_dcl,
         "cd_star": d_dcd,
     }
-    if loss_model != "none":
-        out["radius"] = d_dF * loss.dF_dradius
-    if loss_model == "tip_hub":
-        out["hub_radius"] = d_dF * loss.dF_dhub_radius
+    for name, d_F in loss_partials(section.loss, loss_model, r="ref_radius").items():
+        out[name] = out[name] + d_dF * d_F if name in out else d_dF * d_F
     return out
 
 
 def section_wrt(loss_model):
     """The inputs a reference-station quantity depends on, for exact sparsity."""
-    wrt = ["v_axial", "v_theta_ref", "ref_chord", "ref_radius", "cl_star", "cd_star"]
-    if loss_model != "none":
-        wrt.append("radius")
-    if loss_model == "tip_hub":
-        wrt.append("hub_radius")
-    return wrt
+    return ["v_axial", "v_theta_ref", "ref_chord", "ref_radius", "cl_star", "cd_star"] + list(loss_inputs(loss_model))
 
 
 class ReferenceStationComp(om.ImplicitComponent):
@@ -111,19 +101,15 @@ class ReferenceStationComp(om.ImplicitComponent):
     with ``sigma = B c_ref / (2 pi r_ref)``, ``C_x, C_theta`` from Eq. (7) and
     ``F = F(phi, r_ref)``.  The solve reuses the package's bracketed BEM solver
     (:func:`bild_mdo.bem.root_finding.solve_bracketed`); under complex step one
-    complex Newton update after the real solve carries the exact derivative.
+    complex Newton update after the real solve
+    (:func:`~bild_mdo.utils.newton.complex_step_update`) carries the exact derivative.
     The state Jacobian is diagonal, so ``solve_linear`` divides elementwise.
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations (unused here).
-    num_blades : int
-        Number of blades B.
-    loss_model : str
-        ``'tip_hub'`` (default), ``'tip'`` or ``'none'``.
+    num_nodes, num_blades, loss_model
+        Those of :func:`~bild_mdo.bem.blade_element.declare_section_options`
+        (no stations, no polar).
 
     Inputs
     ------
@@ -143,15 +129,11 @@ class ReferenceStationComp(om.ImplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=1, desc="number of radial stations (unused)")
-        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
-        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
-                             desc="Prandtl losses: 'tip_hub', 'tip' or 'none'")
+        declare_reference_options(self.options)
 
     def setup(self):
         nn = self.options["num_nodes"]
-        add_section_inputs(self, nn)
+        add_section_inputs(self, REFERENCE_INPUTS)
         self.add_output("phi_ref", val=np.full(nn, 0.1), units="rad",
                         desc="inflow angle at the reference station")
         self._dR_dphi = np.ones(nn)
@@ -182,7 +164,7 @@ class ReferenceStationComp(om.ImplicitComponent):
 
     def solve_nonlinear(self, inputs, outputs):
         nn = self.options["num_nodes"]
-        real = {name: np.real(inputs[name]) for name in SECTION_INPUTS}
+        real = {name: np.real(inputs[name]) for name in REFERENCE_INPUTS}
         if np.any(real["v_theta_ref"] <= 0.0):
             raise om.AnalysisError(f"{self.msginfo}: the reference station needs a positive rotor speed")
         if np.any(real["v_axial"] < 0.0):
@@ -196,12 +178,12 @@ class ReferenceStationComp(om.ImplicitComponent):
         phi = solve_bracketed(residual, nn, describe=lambda i: f"reference station of design/node {i}")
         if np.iscomplexobj(outputs["phi_ref"]):
             _, partials = self._residual(phi, real)
-            phi = complex_newton_update(phi, self._residual_value(phi, inputs), partials["phi"])
+            phi = complex_step_update(phi, self._residual_value(phi, inputs), partials["phi"])
         outputs["phi_ref"] = phi
 
     def linearize(self, inputs, outputs, jacobian):
         _, partials = self._residual(np.real(outputs["phi_ref"]),
-                                     {name: np.real(inputs[name]) for name in SECTION_INPUTS})
+                                     {name: np.real(inputs[name]) for name in REFERENCE_INPUTS})
         for name, value in partials.items():
             jacobian["phi_ref", "phi_ref" if name == "phi" else name] = value
         self._dR_dphi = partials["phi"]

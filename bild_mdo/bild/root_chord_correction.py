@@ -4,6 +4,7 @@ import numbers
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 
@@ -33,10 +34,8 @@ class RootChordCorrectionComp(om.ExplicitComponent):
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations.
+    num_nodes, num_radial : int
+        Designs / operating points (axis 0) and radial stations (axis 1).
     correction_constant : float or None
         ``k`` of Eq. (32) (on ``r/R``); ``None`` switches the correction off.
 
@@ -58,26 +57,17 @@ class RootChordCorrectionComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+        declare_size_options(self.options)
         self.options.declare("correction_constant", default=None, allow_none=True,
                              check_valid=_check_constant,
                              desc="k of Eq. (32), applied to r/R; None switches the correction off")
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
-        self.add_input("chord_raw", val=np.full((nn, nr), 0.1), units="m",
-                       desc="back-computed chord before the correction")
-        self.add_input("ref_chord", val=np.full(nn, 0.1), units="m", desc="chord at the reference station")
-        self.add_input("radii", val=np.ones((nn, nr)), units="m", desc="radii of the blade stations")
-        self.add_input("radius", val=np.ones(nn), units="m", desc="rotor tip radius")
-        self.add_output("chord", val=np.full((nn, nr), 0.1), units="m",
-                        desc="blade chord after the root-chord correction, Eq. (32)")
+        add_inputs(self, ("chord_raw", "ref_chord", "radii", "radius"))
+        add_outputs(self, ("chord",))
 
     def setup_partials(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
         rows, cols = dist_wrt_dist(nn, nr)
         if self.options["correction_constant"] is None:
             self.declare_partials("chord", "chord_raw", rows=rows, cols=cols, val=1.0)

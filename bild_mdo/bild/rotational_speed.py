@@ -2,20 +2,16 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.constants import RPM_TO_RAD_PER_S
+from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node, node_wrt_node
-
-RPM_TO_RAD_PER_S = 2.0 * np.pi / 60.0
 
 
 class RotationalSpeedComp(om.ExplicitComponent):
     """Rotational blade speed ``V_theta = Omega r`` (paper nomenclature, Fig. 1b).
 
-    Options
-    -------
-    num_nodes : int
-        Number of designs / operating points.
-    num_radial : int
-        Number of radial stations.
+    Options: the sizes ``num_nodes`` and ``num_radial``
+    (:func:`~bild_mdo.utils.options.declare_size_options`).
 
     Inputs
     ------
@@ -35,23 +31,14 @@ class RotationalSpeedComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points")
-        self.options.declare("num_radial", types=int, default=10, desc="number of radial stations")
+        declare_size_options(self.options)
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
-        self.add_input("rpm", val=np.full(nn, 1000.0), units="rpm", desc="rotor speed")
-        self.add_input("radii", val=np.ones((nn, nr)), units="m", desc="radii of the blade stations")
-        self.add_input("ref_radius", val=np.ones(nn), units="m", desc="radius of the reference station")
-        self.add_output("v_theta", val=np.ones((nn, nr)), units="m/s",
-                        desc="rotational blade speed Omega*r at the stations")
-        self.add_output("v_theta_ref", val=np.ones(nn), units="m/s",
-                        desc="rotational blade speed Omega*r_ref at the reference station")
+        add_inputs(self, ("rpm", "radii", "ref_radius"))
+        add_outputs(self, ("v_theta", "v_theta_ref"))
 
     def setup_partials(self):
-        nn = self.options["num_nodes"]
-        nr = self.options["num_radial"]
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
         rows, cols = dist_wrt_node(nn, nr)
         self.declare_partials("v_theta", "rpm", rows=rows, cols=cols)
         rows, cols = dist_wrt_dist(nn, nr)

@@ -5,11 +5,12 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.airfoil.polar import Polar
-from bild_mdo.bem.bem_analysis_group import BEMAnalysisGroup
-from bild_mdo.bem.performance import PERFORMANCE_OUTPUTS
+from bild_mdo.bem.bem_group import BEMAnalysisGroup
+from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.optimization.normalized_responses import NormalizedResponsesComp
 from bild_mdo.optimization.parameterization import PARAMETERIZATIONS, ParameterizationComp
+from bild_mdo.optimization.responses import NormalizedResponsesComp
+from bild_mdo.utils.options import declare_size_options, sizes
 
 
 class BEMOptimizationGroup(om.Group):
@@ -61,15 +62,14 @@ class BEMOptimizationGroup(om.Group):
         Objective ``E / E_ref`` and constraint ``T / T* - 1``.
     chord[nn, nr] (m), twist[nn, nr] (rad)
         Blade geometry at the stations.
-    thrust, torque, power, efficiency, figure_of_merit, thrust_coefficient,
-    torque_coefficient, power_coefficient, energy_loss, solidity, blade_loading [nn]
-        Rotor performance (:class:`~bild_mdo.bem.performance.RotorPerformanceComp`);
-        station quantities stay under ``bem.*``.
+    thrust, torque, power, ... [nn]
+        Rotor performance, one output per entry of :data:`bild_mdo.bem.metrics.METRICS`
+        (:class:`~bild_mdo.bem.performance.RotorPerformanceComp`); station
+        quantities stay under ``bem.*``.
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
-        self.options.declare("num_radial", types=int, default=30, desc="number of radial stations (axis 1)")
+        declare_size_options(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("polar", types=Polar, recordable=False, desc="airfoil polar cl, cd (alpha, Re)")
         self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
@@ -82,18 +82,17 @@ class BEMOptimizationGroup(om.Group):
     def setup(self):
         opts = self.options
         nn, nr = opts["num_nodes"], opts["num_radial"]
-        parameterization = ParameterizationComp(num_nodes=nn, num_radial=nr,
-                                                parameterization=opts["parameterization"],
+        parameterization = ParameterizationComp(**sizes(opts), parameterization=opts["parameterization"],
                                                 num_cp=opts["num_cp"], order=opts["order"])
         self.add_subsystem("parameterization", parameterization,
                            promotes_inputs=["chord_ratio_cp", "twist_cp", "radius"],
                            promotes_outputs=["chord", "twist"])
         self.add_subsystem("bem",
-                           BEMAnalysisGroup(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
+                           BEMAnalysisGroup(**sizes(opts), num_blades=opts["num_blades"],
                                             polar=opts["polar"], loss_model=opts["loss_model"]),
                            promotes_inputs=["v_axial", "rpm", "radius", "hub_radius", "altitude", "chord", "twist"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
-        self.add_subsystem("responses", NormalizedResponsesComp(num_nodes=nn, num_radial=nr),
+        self.add_subsystem("responses", NormalizedResponsesComp(num_nodes=nn),
                            promotes_inputs=["thrust", "energy_loss", "thrust_target", "energy_loss_ref"],
                            promotes_outputs=["energy_loss_ratio", "thrust_residual"])
 

@@ -22,6 +22,7 @@ import numpy as np
 import openmdao.api as om
 from scipy.interpolate import BSpline
 
+from bild_mdo.utils.options import declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_node
 
 PARAMETERIZATIONS = ("stations", "bspline")
@@ -154,10 +155,8 @@ class ParameterizationComp(om.ExplicitComponent):
 
     Options
     -------
-    num_nodes : int
-        Number of designs / operating points (axis 0).
-    num_radial : int
-        Number of radial stations (axis 1).
+    num_nodes, num_radial : int
+        Designs (axis 0) and radial stations (axis 1).
     parameterization : {'stations', 'bspline'}
         Design variables per station or B-spline control points.
     num_cp : int
@@ -185,8 +184,7 @@ class ParameterizationComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
-        self.options.declare("num_radial", types=int, default=30, desc="number of radial stations (axis 1)")
+        declare_size_options(self.options)
         self.options.declare("parameterization", default="stations", values=PARAMETERIZATIONS,
                              desc="'stations': one design value per station; 'bspline': B-spline control points")
         self.options.declare("num_cp", types=int, default=10, desc="number of B-spline control points")

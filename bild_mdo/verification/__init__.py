@@ -1,20 +1,23 @@
-"""Verification sweep of the BILD method against BEM optimisation (paper Sec. 5.1, Table 3, Figs. 4-5).
+"""Verification sweep of the BILD method against BEM optimisation (paper Sec. 5.1, Table 3).
 
-The sweep machinery (cases, results store, executors, statistics, figures) is
+The sweep machinery (cases, results store, executors, statistics) is
 independent of the science: :func:`run_sweep` takes the batched BILD function
-and the per-case optimisation function as arguments.
+and the per-case optimisation function as arguments
+(:mod:`~bild_mdo.verification.case_functions` has the real ones).  Figs. 4-5
+are drawn by :mod:`bild_mdo.plots.verification`; the ``bild-mdo verify``
+command is :mod:`bild_mdo.cli.verify`.
 """
 from .cases import Case, SweepSpec
 from .executors import run_tasks
 from .optimality import BildTrim, OptimalityCheck, optimality_check, trimmed_bild_energy_loss
-from .progress import ProgressBar
 from .runner import (
     SweepResult,
-    add_verify_arguments,
     default_db_path,
+    format_duration,
     optimize_task,
     run_sweep,
-    run_verify_from_args,
+    sweep_summary,
+    verification_table,
 )
 from .statistics import PAPER_TABLE3, QuantityStats, Table3, format_table3, table3
 from .store import RESULT_KEYS, ResultsStore, StoreError
@@ -27,13 +30,13 @@ __all__ = [
     "OptimalityCheck",
     "optimality_check",
     "trimmed_bild_energy_loss",
-    "ProgressBar",
     "SweepResult",
-    "add_verify_arguments",
     "default_db_path",
+    "format_duration",
     "optimize_task",
     "run_sweep",
-    "run_verify_from_args",
+    "sweep_summary",
+    "verification_table",
     "PAPER_TABLE3",
     "QuantityStats",
     "Table3",

@@ -17,9 +17,10 @@ import time
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.design import bild_problem
-from bild_mdo.optimization.problem import build_optimization_problem, optimize_rotor
-from bild_mdo.verification.store import RESULT_QUANTITIES
+from bild_mdo.bem.metrics import VERIFIED_METRICS
+from bild_mdo.bild.problem import bild_problem
+from bild_mdo.optimization.problem import build_optimization_problem
+from bild_mdo.optimization.run import optimize_rotor
 
 #: Inputs that must be equal for cases to share one batched BILD model.
 _MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
@@ -84,11 +85,11 @@ def bild_batch(cases):
             for i in indices:
                 results[i] = {"converged": False, "error": f"BILD failed for this batch: {exc}"}
             continue
-        values = {name: prob.get_val(name) for name in RESULT_QUANTITIES + ("thrust",)}
+        values = {name: prob.get_val(name) for name in VERIFIED_METRICS + ("thrust",)}
         chord = prob.get_val("chord", units="m")
         twist = prob.get_val("twist", units="rad")
         for k, i in enumerate(indices):
-            row = {name: float(values[name][k]) for name in RESULT_QUANTITIES}
+            row = {name: float(values[name][k]) for name in VERIFIED_METRICS}
             finite = all(np.isfinite(v) for v in row.values()) and np.all(np.isfinite(chord[k]))
             row.update(chord=chord[k].copy(), twist=twist[k].copy(), thrust=float(values["thrust"][k]),
                        converged=bool(finite))
@@ -156,7 +157,7 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
         Optimiser tolerance (default of :func:`~bild_mdo.optimization.problem.build_optimization_problem`).
     restarts : int
         Restarts from where a failed run stopped (see
-        :func:`~bild_mdo.optimization.problem.optimize_rotor`).
+        :func:`~bild_mdo.optimization.run.optimize_rotor`).
 
     Returns
     -------
@@ -173,7 +174,7 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
                             bild_result["thrust"], inputs["altitude"], problem=prob, restarts=restarts, initial=initial,
                             bild_chord=bild_result.get("chord"), bild_twist=bild_result.get("twist"),
                             reference_chord=inputs["reference_chord"])
-    row = {name: result.performance[name] for name in RESULT_QUANTITIES}
+    row = {name: result.performance[name] for name in VERIFIED_METRICS}
     row.update(chord=result.chord, twist=result.twist, converged=result.converged, status=result.status,
                iterations=result.iterations)
     return row

@@ -15,11 +15,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from bild_mdo.constants import RPM_TO_REV_PER_S
+from bild_mdo.optimization.problem import OPTIMIZERS
+
 # Bumped whenever the mapping case_id -> inputs changes, so that old stores are
 # refused instead of being silently resumed with different cases.
 CASE_LAYOUT_VERSION = 1
-
-OPTIMIZERS = ("ipopt", "slsqp", "snopt")
 
 # Swept axes in case-id order: the first axis varies slowest.
 AXES = ("advance_ratio", "radius", "altitude", "reference_chord")
@@ -188,7 +189,7 @@ class SweepSpec:
             rest, index[name] = divmod(rest, levels)
         point = {name: float(values[name][index[name]]) for name in AXES}
         radius = point["radius"]
-        rev_per_second = float(self.rpm) / 60.0
+        rev_per_second = float(self.rpm) * RPM_TO_REV_PER_S
         inputs = dict(point)
         inputs.update(
             rpm=float(self.rpm),

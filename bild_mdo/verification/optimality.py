@@ -20,7 +20,7 @@ BEM analysis per iteration; :func:`optimality_check` does step 3 and sums up.
 The BEM set-up is the one the optimisation uses (``loss_model='tip_hub'``,
 ISA at the case's altitude, the built-in polar named by the case) at the
 stations BILD designs at: the midpoints of ``num_radial`` equal annuli from hub
-to tip, which are also :func:`~bild_mdo.bem.analysis.analyze_rotor`'s default
+to tip, which are also :func:`~bild_mdo.bem.analyze.analyze_rotor`'s default
 stations.
 
 The optimum meets its thrust constraint to ``|T/T* - 1| <= 1e-6``
@@ -34,9 +34,10 @@ import math
 
 import numpy as np
 
-from bild_mdo.airfoil.builtin import get_polar
+from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
-from bild_mdo.bem.analysis import analyze_rotor
+from bild_mdo.bem.analyze import analyze_rotor
+from bild_mdo.constants import RPM_TO_REV_PER_S
 
 #: Loss model of the optimisation problem the optimum comes from.
 LOSS_MODEL = "tip_hub"
@@ -89,7 +90,7 @@ def _thrust_target(rows):
     """``T* = C_T rho n^2 D^4`` of BILD's design (N), rho from the ISA at each case's altitude."""
     c_t = np.array([row["bild_thrust_coefficient"] for row in rows], dtype=float)
     rho = np.asarray(isa(np.array([row["altitude"] for row in rows], dtype=float)).rho, dtype=float)
-    n = np.array([row["rpm"] for row in rows], dtype=float) / 60.0
+    n = np.array([row["rpm"] for row in rows], dtype=float) * RPM_TO_REV_PER_S
     diameter = 2.0 * np.array([row["radius"] for row in rows], dtype=float)
     return c_t * rho * n**2 * diameter**4
 
@@ -115,7 +116,7 @@ def _check_rows(rows):
 def _trim_batch(rows, tol, max_iter, first_step, max_step):
     """Safeguarded secant iteration on the pitch offset of every row at once (one configuration)."""
     _, num_blades, airfoil = (rows[0][k] for k in _MODEL_KEYS)
-    polar = get_polar(airfoil)
+    polar = resolve_polar(airfoil)
     chord = np.array([row["bild_chord"] for row in rows], dtype=float)
     twist = np.array([row["bild_twist"] for row in rows], dtype=float)
     case = {k: np.array([row[k] for row in rows], dtype=float) for k in _CASE_KEYS}
@@ -170,7 +171,7 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     D = 2 R): the optimisation's thrust target.  All cases of one
     configuration (stations, blades, airfoil; the sweep has one) are solved
     together: every iteration is one vectorised
-    :func:`~bild_mdo.bem.analysis.analyze_rotor` call with ``num_nodes`` equal to
+    :func:`~bild_mdo.bem.analyze.analyze_rotor` call with ``num_nodes`` equal to
     the number of cases, and the pitch offsets follow a secant iteration per
     case (a probe step of ``first_step`` first), with each step limited to
     ``max_step`` and the last positive slope kept where a secant is not.

@@ -22,7 +22,6 @@ The science is plugged in through two functions:
 Both must be module-level functions (picklable) to run in worker processes or
 on a Dask cluster.
 """
-import argparse
 import functools
 import os
 import sys
@@ -31,10 +30,12 @@ import traceback
 from dataclasses import dataclass, field
 
 import numpy as np
+import openmdao.api as om
+from tqdm import tqdm
 
-from .cases import OPTIMIZERS, SweepSpec
 from .executors import check_picklable, connect_dask, run_tasks
-from .progress import ProgressBar, format_duration
+from .optimality import optimality_check
+from .statistics import table3
 from .store import INPUT_COLUMNS, RESULT_ARRAYS, RESULT_KEYS, ResultsStore
 
 ERROR_TEXT_LIMIT = 4000
@@ -244,7 +245,7 @@ def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress
     if progress:
         print(f"BILD: {len(remaining)} cases in {result.bild_batch_time:.2f} s; {result.num_skipped} already stored",
               file=stream or sys.stderr)
-    bar = ProgressBar(len(remaining), label="optimise", stream=stream) if progress else None
+    bar = _progress_bar(len(remaining), stream) if progress else None
     try:
         tasks, pending_rows = [], {}
         for case, (bild_result, bild_clean, bild_time) in zip(remaining, bild):
@@ -264,6 +265,15 @@ def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress
             bar.close()
 
 
+def _progress_bar(total, stream):
+    """A tqdm bar of the optimisations: redrawn on a terminal, a plain line every 30 s in a log."""
+    stream = sys.stderr if stream is None else stream
+    isatty = getattr(stream, "isatty", None)
+    tty = bool(isatty and isatty())
+    return tqdm(total=total, desc="optimise", unit="case", file=stream, mininterval=0.1 if tty else 30.0,
+                ascii=not tty, dynamic_ncols=tty)
+
+
 def _store(store, row, result, bar):
     store.write(row)
     result.computed_ids.append(row["case_id"])
@@ -278,104 +288,57 @@ def default_db_path(spec):
     return f"bild-verify-L{spec.levels}-{spec.optimizer}.sqlite"
 
 
-def add_verify_arguments(parser):
-    """Add the ``verify`` options to an argparse parser.
-
-    Options: ``--levels``, ``--workers``, ``--scheduler``, ``--db``,
-    ``--optimizer``, ``--figures``, ``--no-progress``.
-
-    Parameters
-    ----------
-    parser : argparse.ArgumentParser
-
-    Returns
-    -------
-    argparse.ArgumentParser
-        The same parser.
-    """
-    parser.add_argument("--levels", type=int, default=10,
-                        help="levels per swept axis (J, R, altitude, c_ref); 10 gives the paper's 10,000 cases")
-    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
-                        help="local worker processes for the optimisations (1 = in this process; default: CPU count)")
-    parser.add_argument("--scheduler", metavar="ADDR", default=None,
-                        help="Dask scheduler address, e.g. tcp://host:8786 (needs bild-mdo[dask]); overrides --workers")
-    parser.add_argument("--db", metavar="FILE", default=None,
-                        help="SQLite results store; an existing store of the same sweep is resumed "
-                             "(default: bild-verify-L<levels>-<optimizer>.sqlite)")
-    parser.add_argument("--optimizer", choices=OPTIMIZERS, default="slsqp",
-                        help="optimiser of the reference BEM optimisation (default: slsqp)")
-    parser.add_argument("--figures", metavar="DIR", default=None,
-                        help="write Fig. 4 and Fig. 5 as PNG files into DIR (needs bild-mdo[plot])")
-    parser.add_argument("--no-progress", action="store_true", help="no progress report on stderr")
-    return parser
+def format_duration(seconds):
+    """Format seconds as ``'42s'``, ``'3m05s'`` or ``'2h07m'``; ``'?'`` when unknown."""
+    if seconds is None or seconds != seconds or seconds == float("inf"):
+        return "?"
+    seconds = int(round(seconds))
+    if seconds < 60:
+        return f"{seconds}s"
+    if seconds < 3600:
+        return f"{seconds // 60}m{seconds % 60:02d}s"
+    return f"{seconds // 3600}h{(seconds % 3600) // 60:02d}m"
 
 
-def run_verify_from_args(args, bild_batch_fn, optimize_fn, stream=None):
-    """Run the sweep from parsed ``verify`` options and print the Table 3 reproduction.
+def sweep_summary(spec, db_path, run):
+    """One line on what :func:`run_sweep` did: cases resumed, computed, their wall time and failures.
 
     Parameters
     ----------
-    args : argparse.Namespace
-        From a parser set up with :func:`add_verify_arguments`.
-    bild_batch_fn, optimize_fn : callable
-        See :func:`run_sweep`.
-    stream : file-like, optional
-        Where the table goes (stdout by default).
+    spec : SweepSpec
+    db_path : str or os.PathLike
+    run : SweepResult
 
     Returns
     -------
-    Table3
+    str
     """
-    from .statistics import format_table3, table3
+    return (f"Sweep of {spec.num_cases} cases in {os.fspath(db_path)}: {run.num_skipped} resumed, "
+            f"{len(run.computed_ids)} computed in {format_duration(run.wall_time)} ({run.num_failed} not converged).")
 
-    stream = sys.stdout if stream is None else stream
-    spec = SweepSpec(levels=args.levels, optimizer=args.optimizer)
-    db_path = args.db or default_db_path(spec)
-    if args.figures:
-        # Fail before hours of computing, not after.
-        from .figures import require_matplotlib
 
-        require_matplotlib()
-    run = run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=args.workers, scheduler=args.scheduler,
-                    progress=not args.no_progress)
-    with ResultsStore(db_path, spec) as store:
-        rows = store.rows()
+def verification_table(rows):
+    """Table 3 of a results store, with the check that every optimum is an optimum.
+
+    A failed optimality check must not cost the figures of a finished sweep,
+    so analysis errors are returned instead of raised.
+
+    Parameters
+    ----------
+    rows : list of dict
+        :meth:`ResultsStore.rows`.
+
+    Returns
+    -------
+    table : Table3
+        With ``table.optimality`` set when the check ran
+        (:func:`~bild_mdo.verification.optimality.optimality_check`).
+    error : str or None
+        Why the check failed, if it did.
+    """
     table = table3(rows)
-    optimality_error = _attach_optimality(table, rows)
-    print(
-        f"Sweep of {spec.num_cases} cases in {db_path}: {run.num_skipped} resumed, {len(run.computed_ids)} computed "
-        f"in {format_duration(run.wall_time)} ({run.num_failed} not converged).",
-        file=stream,
-    )
-    print(format_table3(table), file=stream)
-    if optimality_error is not None:
-        print(f"Optimum is an optimum: not checked, the BEM trim of the BILD designs failed: {optimality_error}",
-              file=stream)
-    if args.figures:
-        from .figures import save_figures
-
-        for path in save_figures(rows, args.figures):
-            print(f"wrote {path}", file=stream)
-    return table
-
-
-def _attach_optimality(table, rows):
-    """Set ``table.optimality`` (the optimum against BILD trimmed to T*); return the error text if it failed.
-
-    A failed check must not cost the figures of a finished sweep, so analysis
-    errors are reported instead of raised.
-    """
-    import openmdao.api as om
-
-    from .optimality import optimality_check
-
     try:
         table.optimality = optimality_check(rows)
     except (om.AnalysisError, ValueError, ArithmeticError) as exc:
-        return str(exc)
-    return None
-
-
-def verify_parser():
-    """A stand-alone parser with the ``verify`` options (for scripts and tests)."""
-    return add_verify_arguments(argparse.ArgumentParser(prog="bild-mdo verify", description=__doc__.splitlines()[0]))
+        return table, str(exc)
+    return table, None

@@ -13,20 +13,35 @@ Definitions (the paper does not spell them out; these are ours):
   percent.  A case whose value is missing (NULL/NaN) for either method, or
   whose optimum is zero, is left out of that quantity; ``num_cases`` of each
   quantity says how many were used.
-- Energy loss E is stored in W and shown in kW, as in the paper.
+- Energy loss E is stored in W and shown in kW, as in the paper (the
+  registry's display scale, :data:`bild_mdo.bem.metrics.METRICS`).
+- The scalar rows are the registry's verified metrics
+  (:data:`~bild_mdo.bem.metrics.VERIFIED_METRICS`); a metric the paper does
+  not report shows "-" in the paper's columns.
 """
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
-SCALARS = (
-    ("thrust_coefficient", "Thrust coefficient C_T [min, max]", 1.0),
-    ("torque_coefficient", "Torque coefficient C_Q [min, max]", 1.0),
-    ("power_coefficient", "Power coefficient C_P [min, max]", 1.0),
-    ("efficiency", "Efficiency eta [min, max] (J > 0)", 1.0),
-    ("figure_of_merit", "Figure of merit FM [min, max] (J = 0)", 1.0),
-    ("energy_loss", "Rate of energy loss (kW) [min, max]", 1e-3),
+from bild_mdo.bem.metrics import METRICS_BY_NAME, VERIFIED_METRICS
+
+# Row labels of the paper's Table 3; a verified metric without one is labelled from the registry.
+TABLE3_LABELS = {
+    "thrust_coefficient": "Thrust coefficient C_T [min, max]",
+    "torque_coefficient": "Torque coefficient C_Q [min, max]",
+    "power_coefficient": "Power coefficient C_P [min, max]",
+    "efficiency": "Efficiency eta [min, max] (J > 0)",
+    "figure_of_merit": "Figure of merit FM [min, max] (J = 0)",
+    "energy_loss": "Rate of energy loss (kW) [min, max]",
+}
+# Metrics defined in one flight regime only: eta is zero in hover, FM a hover metric.
+REGIMES = {"efficiency": "forward", "figure_of_merit": "hover"}
+#: (result key, row label, display scale) of the scalar rows, one per verified metric of the registry.
+SCALARS = tuple(
+    (name, TABLE3_LABELS.get(name, f"{METRICS_BY_NAME[name].label} [min, max]"),
+     METRICS_BY_NAME[name].display_scale)
+    for name in VERIFIED_METRICS
 )
 NORMS = (
     ("twist_norm", "Blade twist distribution (norm)", "twist"),
@@ -82,7 +97,7 @@ class Table3:
     Attributes
     ----------
     quantities : dict of str to QuantityStats
-        The six scalar quantities then ``twist_norm`` and ``chord_norm``, in table order.
+        The verified scalar metrics then ``twist_norm`` and ``chord_norm``, in table order.
     num_cases : int
         Stored cases.
     num_converged : int
@@ -157,6 +172,29 @@ def _norm_stats(rows, key, label, array):
     return QuantityStats(key, label, None, None, mean, len(errors))
 
 
+def defined_cases(rows, key):
+    """The rows in whose flight regime the metric ``key`` is defined.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Results-store rows.
+    key : str
+        A verified metric.
+
+    Returns
+    -------
+    list of dict
+        J > 0 for the efficiency, J = 0 for the figure of merit, every row otherwise.
+    """
+    regime = REGIMES.get(key)
+    if regime == "hover":
+        return [r for r in rows if r["advance_ratio"] == 0.0]
+    if regime == "forward":
+        return [r for r in rows if r["advance_ratio"] > 0.0]
+    return list(rows)
+
+
 def table3(rows):
     """Compute the Table 3 statistics from results-store rows.
 
@@ -171,12 +209,9 @@ def table3(rows):
     """
     rows = list(rows)
     converged = [r for r in rows if r["converged"] and r["bild_converged"]]
-    hover = [r for r in converged if r["advance_ratio"] == 0.0]
-    forward = [r for r in converged if r["advance_ratio"] > 0.0]
     quantities = {}
     for key, label, scale in SCALARS:
-        subset = forward if key == "efficiency" else hover if key == "figure_of_merit" else converged
-        quantities[key] = _scalar_stats(subset, key, label, scale)
+        quantities[key] = _scalar_stats(defined_cases(converged, key), key, label, scale)
     for key, label, array in NORMS:
         quantities[key] = _norm_stats(converged, key, label, array)
     num = len(rows)
@@ -227,7 +262,7 @@ def format_table3(table):
     header = ("Quantity", "BILD", "Optimum", "Err. (%)", "n", "Paper BILD", "Paper optimum", "Paper err. (%)")
     lines = []
     for key, stats in table.quantities.items():
-        paper_bild, paper_opt, paper_error = PAPER_TABLE3[key]
+        paper_bild, paper_opt, paper_error = PAPER_TABLE3.get(key, (None, None, None))
         lines.append((
             stats.label, _fmt_range(stats.bild_range), _fmt_range(stats.opt_range),
             _fmt_number(stats.mean_relative_error_pct), str(stats.num_cases),

@@ -5,7 +5,7 @@ import re
 import numpy as np
 import pytest
 
-from bild_mdo.airfoil.readers import load_builtin_polars
+from bild_mdo.airfoil.sources.readers import load_builtin_polars
 
 DATA = importlib.resources.files("bild_mdo.airfoil") / "data"
 # Paper Appendix 7.2: ten Reynolds numbers from 5e4 to 2e6.
@@ -66,7 +66,7 @@ def test_attached_flow_is_consistent_across_reynolds(polars):
 
 def test_readme_table_matches_the_files(polars):
     text = (DATA / "README.md").read_text()
-    assert "python -m bild_mdo.airfoil.xfoil --airfoil 4412" in text
+    assert "python -m bild_mdo.airfoil.sources.xfoil --airfoil 4412" in text
     assert "XFOIL 6.99" in text
     number, cell = r"\s*([\d.e]+)\s*", r"[^|]*"
     row = rf"^\|{number}\|{number}\|{number}\|{cell}\|{number}\|{number}\|$"
@@ -78,36 +78,3 @@ def test_readme_table_matches_the_files(polars):
         k = np.argmax(p.lift_to_drag)
         assert abs(float(best) - p.lift_to_drag[k]) < 0.051
         assert float(at_alpha) == p.alpha_deg[k]
-
-
-def test_neuralfoil_agrees_with_shipped_xfoil_data(polars):
-    # NeuralFoil is a neural-network emulator of XFOIL, so it is an independent
-    # check of the shipped data in attached flow (optional dependency).
-    pytest.importorskip("neuralfoil")
-    from bild_mdo.airfoil.neuralfoil_polars import run_neuralfoil
-
-    alpha = np.arange(0.0, 8.5, 1.0)
-    (nf,) = run_neuralfoil("NACA 4412", [1e6], alpha, model_size="large")
-    assert nf.reynolds == 1e6 and nf.source.startswith("NeuralFoil")
-    ref = polars[EXPECTED_RE.index(1e6)]
-    idx = np.searchsorted(ref.alpha_deg, alpha)
-    np.testing.assert_allclose(nf.cl, ref.cl[idx], atol=0.03)
-    np.testing.assert_allclose(nf.cd, ref.cd[idx], rtol=0.12)
-    assert abs(nf.lift_to_drag.max() / ref.lift_to_drag.max() - 1.0) < 0.05
-
-
-def test_neuralfoil_missing_says_how_to_install(monkeypatch):
-    import builtins
-
-    from bild_mdo.airfoil import neuralfoil_polars
-
-    real_import = builtins.__import__
-
-    def no_neuralfoil(name, *args, **kwargs):
-        if name in ("neuralfoil", "aerosandbox"):
-            raise ImportError(f"No module named {name!r}")
-        return real_import(name, *args, **kwargs)
-
-    monkeypatch.setattr(builtins, "__import__", no_neuralfoil)
-    with pytest.raises(ImportError, match=re.escape("pip install bild-mdo[neuralfoil]")):
-        neuralfoil_polars.run_neuralfoil("4412", [1e6], [0.0, 2.0])

@@ -1,11 +1,15 @@
 """Tests of the exact maximum-L/D point and its Reynolds derivatives."""
+import importlib
 import warnings
 
 import numpy as np
 import pytest
 
 from bild_mdo.airfoil import AnalyticPolar, MaxLiftToDrag, TabulatedPolar, max_lift_to_drag
-from bild_mdo.airfoil.readers import PolarData
+from bild_mdo.airfoil.sources import PolarData
+
+# The package re-exports the function under the module's name; this is the module.
+MAX_LIFT_TO_DRAG_MODULE = importlib.import_module("bild_mdo.airfoil.max_lift_to_drag")
 
 
 @pytest.fixture(scope="module")
@@ -107,6 +111,36 @@ def test_no_interior_maximum_raises(analytic):
 def test_rejects_nonfinite_reynolds(analytic):
     with pytest.raises(ValueError, match="finite"):
         max_lift_to_drag(analytic, np.array([1e6, np.nan]))
+
+
+class _PolarWithHole(AnalyticPolar):
+    """An analytic polar that is undefined (NaN) within 1e-4 rad of a given angle."""
+
+    hole = 0.0
+
+    def _evaluate_real(self, alpha, reynolds):
+        values = super()._evaluate_real(alpha, reynolds)
+        inside = np.abs(alpha - self.hole) < 1e-4
+        return type(values)(*(np.where(inside, np.nan, v) for v in values))
+
+
+def test_non_convergence_is_reported_with_the_reynolds_numbers():
+    # The hole sits on the exact optimum of the second Reynolds number, between the
+    # 0.25 deg scan points, so the scan brackets it and the iterates fall into it.
+    polar = _PolarWithHole(reynolds_exponent=0.2)
+    reynolds = np.array([2e5, 7e5])
+    alpha_star, _, _ = polar.max_lift_to_drag_closed_form(reynolds)
+    polar.hole = alpha_star[1]
+    assert abs(alpha_star[1] - alpha_star[0]) > 1e-3
+    with pytest.raises(ValueError, match=r"did not converge .* at Re = \[700000\.0\]"):
+        max_lift_to_drag(polar, reynolds)
+
+
+def test_iteration_limit_is_reported(analytic, monkeypatch):
+    monkeypatch.setattr(MAX_LIFT_TO_DRAG_MODULE, "_MAX_ITERATIONS", 1)
+    with pytest.raises(ValueError, match=r"did not converge in 1 Newton iterations at Re = "
+                                         r"\[300000\.0, 3000000\.0\]"):
+        max_lift_to_drag(analytic, np.array([3e5, 3e6]))
 
 
 def test_clamped_reynolds_has_zero_derivative(surrogate):

@@ -5,8 +5,8 @@ import warnings
 import numpy as np
 import pytest
 
-from bild_mdo.airfoil import AnalyticPolar, TabulatedPolar, get_polar, naca4412
-from bild_mdo.airfoil.readers import PolarData, load_builtin_polars
+from bild_mdo.airfoil import AnalyticPolar, TabulatedPolar, naca4412
+from bild_mdo.airfoil.sources import PolarData, load_builtin_polars, write_polar_table
 
 TABLE_RE = np.array([5e4, 1e5, 3e5, 1e6, 2e6])
 DATA_ALPHA = np.arange(-10.0, 20.01, 0.5)
@@ -174,8 +174,6 @@ def test_duplicate_reynolds_rejected():
 
 
 def test_builders_from_files_tables_and_arrays(tmp_path):
-    from bild_mdo.airfoil.readers import write_polar_table
-
     tables = [_table(re) for re in (1e5, 1e6)]
     xfoil_paths, table_paths = [], []
     for t in tables:
@@ -256,9 +254,3 @@ def test_naca4412_drag_positive_everywhere(naca):
     alpha, reynolds = np.meshgrid(np.linspace(-np.pi, np.pi, 1441), np.geomspace(5e4, 2e6, 60))
     assert np.all(naca.evaluate(alpha, reynolds).cd > 0.0)
 
-
-def test_registry():
-    assert get_polar("NACA4412") is naca4412()          # cached, case-insensitive
-    assert isinstance(get_polar("Analytic"), AnalyticPolar)
-    with pytest.raises(ValueError, match="analytic, naca4412"):
-        get_polar("clark-y")

@@ -2,6 +2,7 @@
 import numpy as np
 import pytest
 
+from bild_mdo.airfoil.sources import PolarData
 from bild_mdo.airfoil.viterna import (STALL_BLEND_HALF_WIDTH, cd_max_from_aspect_ratio,
                                       default_alpha_grid, detect_stall, extend_arrays,
                                       extend_polar, hermite_blend, post_stall,
@@ -174,9 +175,8 @@ def test_spline_pre_stall_removes_noise():
 
 
 def test_extend_polar_takes_polar_data():
-    readers = pytest.importorskip("bild_mdo.airfoil.readers")
     a, cl, cd = synthetic_polar()
-    data = readers.PolarData(2e5, 0.0, a, cl, cd, "synthetic")
+    data = PolarData(2e5, 0.0, a, cl, cd, "synthetic")
     e = extend_polar(data)
     assert e.reynolds == 2e5
     np.testing.assert_array_equal(e.cl, extend_arrays(a, cl, cd, 2e5).cl)

@@ -2,12 +2,22 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_partials
 
-from bild_mdo.bem.analysis import station_radii
+from bild_mdo.airfoil.polar import Polar, PolarValues
+from bild_mdo.bem.analyze import station_radii
+from bild_mdo.bem.blade_element import evaluate_section, residual_function
 from bild_mdo.bem.inflow import InflowComp
+from bild_mdo.utils.testing import check_component_partials
 
 NN, NR, B = 3, 7, 3
+
+
+def _values(blade, all_hover=False):
+    values = {name: blade[name] for name in ("rpm", "radius", "hub_radius", "chord", "twist")}
+    values.update(v_axial=0.0 * blade["v_axial"] if all_hover else blade["v_axial"],
+                  radii=station_radii(blade["radius"], blade["hub_radius"], NR),
+                  rho=[1.225, 1.1, 0.95], mu=[1.79e-5, 1.75e-5, 1.7e-5])
+    return values
 
 
 def _problem(polar, blade, loss_model="tip_hub", all_hover=False):
@@ -15,12 +25,8 @@ def _problem(polar, blade, loss_model="tip_hub", all_hover=False):
     prob.model.add_subsystem("inflow", InflowComp(num_nodes=NN, num_radial=NR, num_blades=B, polar=polar,
                                                   loss_model=loss_model), promotes=["*"])
     prob.setup(force_alloc_complex=True)
-    for name in ("rpm", "radius", "hub_radius", "chord", "twist"):
-        prob.set_val(name, blade[name])
-    prob.set_val("v_axial", 0.0 * blade["v_axial"] if all_hover else blade["v_axial"])
-    prob.set_val("radii", station_radii(blade["radius"], blade["hub_radius"], NR))
-    prob.set_val("rho", [1.225, 1.1, 0.95])
-    prob.set_val("mu", [1.79e-5, 1.75e-5, 1.7e-5])
+    for name, value in _values(blade, all_hover).items():
+        prob.set_val(name, value)
     prob.run_model()
     return prob
 
@@ -28,13 +34,12 @@ def _problem(polar, blade, loss_model="tip_hub", all_hover=False):
 @pytest.mark.parametrize("loss_model", ["tip_hub", "tip", "none"])
 @pytest.mark.parametrize("all_hover", [False, True], ids=["hover+cruise", "hover"])
 def test_solves_and_partials(smooth_polar, make_blade, loss_model, all_hover):
-    prob = _problem(smooth_polar, make_blade(NN, NR), loss_model, all_hover)
+    comp = InflowComp(num_nodes=NN, num_radial=NR, num_blades=B, polar=smooth_polar, loss_model=loss_model)
+    prob = check_component_partials(comp, _values(make_blade(NN, NR), all_hover), atol=1e-9, rtol=1e-9)
     prob.model.run_apply_nonlinear()
     assert np.max(np.abs(prob.model._residuals.asarray())) < 1e-12
     phi = prob.get_val("phi")
     assert np.all((phi > 0.0) & (phi < np.pi / 2))  # thrust-producing blades: region 1
-    data = prob.check_partials(method="cs", out_stream=None)
-    assert_check_partials(data, atol=1e-9, rtol=1e-9)
 
 
 def test_solve_linear_divides_by_state_jacobian(smooth_polar, make_blade):
@@ -54,8 +59,6 @@ def test_solve_linear_divides_by_state_jacobian(smooth_polar, make_blade):
 
 
 def test_no_bracket_raises_analysis_error(make_blade):
-    from bild_mdo.airfoil.polar import Polar, PolarValues
-
     class DownforcePolar(Polar):
         """cl = -10 cos(alpha), cd = 0 (unphysical).
 
@@ -77,8 +80,6 @@ def test_no_bracket_raises_analysis_error(make_blade):
 def test_solver_residual_matches_component_residual(smooth_polar, make_blade, loss_model):
     # The fast residual used inside the bracketed solve and the component's residual/partials are
     # the same function (one formula set, two code paths).
-    from bild_mdo.bem.section import evaluate_section, residual_function
-
     blade = make_blade(NN, NR)
     radii = station_radii(blade["radius"], blade["hub_radius"], NR)
     phi = np.random.default_rng(9).uniform(-0.5, 2.5, (NN, NR))

@@ -50,9 +50,9 @@ def test_reduces_to_paper_eq9_without_loss():
 def test_root_satisfies_momentum_and_blade_element_balance(v_axial):
     """At R(phi) = 0 the Eq. (8) velocities close the inflow triangle and both momentum balances.
 
-    Physical invariants: tan(phi) = u_x / (V_theta - u_theta/2); axial momentum
-    4 pi rho u_x (u_x - V_x) r F = 1/2 rho W^2 B c C_x; angular momentum
-    2 pi rho u_x u_theta r^2 F = 1/2 rho W^2 B c C_theta r.
+    Physical invariants: tan(phi) = u_axial / (V_theta - u_theta/2); axial momentum
+    4 pi rho u_axial (u_axial - V_x) r F = 1/2 rho W^2 B c C_x; angular momentum
+    2 pi rho u_axial u_theta r^2 F = 1/2 rho W^2 B c C_theta r.
     """
     B, c, r, rho, F = 3, 0.08, 0.6, 1.2, 0.9
     vt = 120.0

@@ -2,27 +2,27 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_partials
 
 from bild_mdo.bem.performance import RotorPerformanceComp
+from bild_mdo.utils.testing import check_component_partials
 
 NN, NR, B = 3, 7, 3
 
 
-def _problem(v_axial):
+def _values(v_axial):
     rng = np.random.default_rng(7)
+    return dict(dthrust_dr=rng.uniform(10.0, 400.0, (NN, NR)), dtorque_dr=rng.uniform(5.0, 80.0, (NN, NR)),
+                dr=rng.uniform(0.02, 0.1, (NN, NR)), chord=rng.uniform(0.05, 0.15, (NN, NR)), v_axial=v_axial,
+                rpm=[1200.0, 2400.0, 3100.0], radius=[0.7, 1.1, 1.6], rho=[1.225, 1.0, 0.9])
+
+
+def _problem(v_axial):
     prob = om.Problem(reports=False)
     prob.model.add_subsystem("perf", RotorPerformanceComp(num_nodes=NN, num_radial=NR, num_blades=B),
                              promotes=["*"])
     prob.setup(force_alloc_complex=True)
-    prob.set_val("dthrust_dr", rng.uniform(10.0, 400.0, (NN, NR)))
-    prob.set_val("dtorque_dr", rng.uniform(5.0, 80.0, (NN, NR)))
-    prob.set_val("dr", rng.uniform(0.02, 0.1, (NN, NR)))
-    prob.set_val("chord", rng.uniform(0.05, 0.15, (NN, NR)))
-    prob.set_val("v_axial", v_axial)
-    prob.set_val("rpm", [1200.0, 2400.0, 3100.0])
-    prob.set_val("radius", [0.7, 1.1, 1.6])
-    prob.set_val("rho", [1.225, 1.0, 0.9])
+    for name, value in _values(v_axial).items():
+        prob.set_val(name, value)
     prob.run_model()
     return prob
 
@@ -30,8 +30,8 @@ def _problem(v_axial):
 @pytest.mark.filterwarnings("ignore:(?s).*zero derivatives")  # eta = 0 in hover: some partials vanish
 @pytest.mark.parametrize("v_axial", [[0.0, 0.0, 0.0], [0.0, 12.0, 45.0]], ids=["hover", "cruise"])
 def test_partials(v_axial):
-    prob = _problem(v_axial)
-    assert_check_partials(prob.check_partials(method="cs", out_stream=None), atol=1e-10, rtol=1e-10)
+    check_component_partials(RotorPerformanceComp(num_nodes=NN, num_radial=NR, num_blades=B), _values(v_axial),
+                             atol=1e-10, rtol=1e-10)
 
 
 def test_metrics_by_hand():

@@ -3,7 +3,8 @@ import numpy as np
 import openmdao.api as om
 import pytest
 
-from bild_mdo.bem.root_finding import complex_newton_update, find_brackets, solve_bracketed
+from bild_mdo.bem.root_finding import find_brackets, solve_bracketed
+from bild_mdo.utils.newton import complex_step_update
 
 
 def _shifted_sine(roots):
@@ -74,11 +75,22 @@ def test_non_finite_residual_raises():
         solve_bracketed(residual, 3)
 
 
-def test_complex_newton_update_carries_exact_derivative():
+def test_complex_step_update_carries_exact_derivative():
     # R(phi; x) = phi^3 + phi - x: dphi/dx = 1 / (3 phi^2 + 1) (implicit function theorem).
     x = np.array([0.5, 2.0, 10.0])
     phi = solve_bracketed(lambda p, i: (p**3 + p - x[i], 3 * p**2 + 1), 3)
     h = 1e-30
-    phi_c = complex_newton_update(phi, phi**3 + phi - (x + 1j * h), 3 * phi**2 + 1)
+    phi_c = complex_step_update(phi, phi**3 + phi - (x + 1j * h), 3 * phi**2 + 1)
     np.testing.assert_allclose(np.real(phi_c), phi, rtol=0, atol=1e-15)
     np.testing.assert_allclose(np.imag(phi_c) / h, 1.0 / (3 * phi**2 + 1), rtol=1e-14)
+
+
+def test_non_convergence_raises_analysis_error_naming_station():
+    # Station 0: R = phi - 0.7, solved by the first Newton step.  Station 1: a cubic root,
+    # R = (phi - 0.7)**3, which needs more than two safeguarded Newton steps from [1e-6, pi/2].
+    def residual(phi, idx):
+        cubic = idx == 1
+        d = phi - 0.7
+        return np.where(cubic, d**3, d), np.where(cubic, 3 * d**2, 1.0)
+    with pytest.raises(om.AnalysisError, match=r"did not converge in 2 iterations at design/node 0, station 1"):
+        solve_bracketed(residual, 2, shape=(1, 2), max_iter=2)

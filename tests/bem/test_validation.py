@@ -129,7 +129,7 @@ def test_ccblade_cambered_propeller():
     res = _propeller1(LinearPolar(alpha0=np.radians(-3.0)), 5.0)
     assert res.thrust[0] == pytest.approx(1223.0506862888788, rel=1e-10)
     assert res.torque[0] == pytest.approx(113.79919472569034, rel=1e-10)
-    # Station 4 of the source: induced velocity u = a V = u_x - V_x and v = u_theta/2, phi, W.
+    # Station 4 of the source: induced velocity u = a V = u_axial - V_x and v = u_theta/2, phi, W.
     assert res.u_axial[0, 3] - 5.0 == pytest.approx(11.422756238105471, rel=1e-9)
     assert res.u_theta[0, 3] / 2 == pytest.approx(3.2709314141649575, rel=1e-9)
     assert res.phi[0, 3] == pytest.approx(0.2596455971546484, rel=1e-10)

@@ -1,4 +1,4 @@
-"""Shared inputs and a partials checker for the BILD component tests.
+"""Shared inputs of the BILD component tests (partials are checked by bild_mdo.utils.testing).
 
 Two operating states are used throughout, at num_nodes=3 (three designs that
 differ in rpm and radius) and num_radial=7 (nn != nr so a transposed sparsity
@@ -7,13 +7,8 @@ pattern fails):
 * ``hover``: V_x = 0, the case the paper treats separately (Remark 4);
 * ``cruise``: V_x = 20..40 m/s, advance ratios J ~ 0.5..1.
 """
-import warnings
-
 import numpy as np
-import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_partials
-from openmdao.utils.om_warnings import DerivativesWarning
 
 NN = 3
 NR = 7
@@ -33,13 +28,13 @@ def state(kind):
     v_axial = np.zeros(NN) if kind == "hover" else np.array([20.0, 30.0, 40.0])
     eta2 = 0.90 + 0.08 * rng.random((NN, NR))
     u_theta = 2.0 * v_theta * (1.0 - eta2)
-    u_x = v_axial[:, None] + 8.0 + 4.0 * rng.random((NN, NR))
+    u_axial = v_axial[:, None] + 8.0 + 4.0 * rng.random((NN, NR))
     return dict(
         radius=radius, rpm=rpm, hub_radius_ratio=hub_ratio, ref_radius_ratio=ref_ratio,
         hub_radius=hub_ratio * radius, ref_radius=ref_ratio * radius, radii=radii,
         v_theta=v_theta, v_theta_ref=omega * ref_ratio * radius, v_axial=v_axial,
-        eta2=eta2, u_theta=u_theta, u_x=u_x,
-        phi=np.arctan2(u_x, v_theta - 0.5 * u_theta),
+        eta2=eta2, u_theta=u_theta, u_axial=u_axial,
+        phi=np.arctan2(u_axial, v_theta - 0.5 * u_theta),
         rho=np.array([1.225, 1.1, 0.95]), mu=np.array([1.81e-5, 1.78e-5, 1.75e-5]),
         ref_chord=np.array([0.15, 0.1, 0.2]),
         cl_star=np.array([1.1, 1.0, 0.95]), cd_star=np.array([0.011, 0.012, 0.010]),
@@ -50,22 +45,3 @@ def state(kind):
 @pytest.fixture(params=["hover", "cruise"])
 def kind(request):
     return request.param
-
-
-def check_component(comp, values, atol=1e-8, rtol=1e-8):
-    """Set ``values`` on the component's inputs, run it and assert its partials against complex step."""
-    prob = om.Problem(reports=False)
-    prob.model.add_subsystem("comp", comp, promotes=["*"])
-    prob.setup(force_alloc_complex=True)
-    names = {meta["prom_name"] for meta in prob.model.get_io_metadata(iotypes="input").values()}
-    for name in names:
-        if name in values:
-            prob.set_val(name, values[name])
-    prob.run_model()
-    with warnings.catch_warnings():
-        # In hover (V_x = 0) some declared partials are exactly zero (e.g. dRe/dV_x = Re V_x/W0**2):
-        # OpenMDAO warns about them, but the pattern must stay declared for V_x > 0.
-        warnings.filterwarnings("ignore", message="(?s).*has zero derivatives", category=DerivativesWarning)
-        data = prob.check_partials(method="cs", out_stream=None)
-    assert_check_partials(data, atol=atol, rtol=rtol)
-    return prob

@@ -5,35 +5,36 @@ import pytest
 from bild_mdo.bild.chord import ChordComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
-from bild_mdo.bild.sectional_loads import SectionalLoadsComp
-from tests.bild.conftest import NN, NR, check_component, state
+from bild_mdo.bild.momentum_loads import MomentumLoadsComp
+from bild_mdo.utils.testing import check_component_partials
+from tests.bild.conftest import NN, NR, state
 
 
 def _consistent(kind):
     """Loads, inflow angle and speed of an ideal loading (Eqs. (24), (26), (30), (1), (2))."""
     values = state(kind)
     prob = om.Problem(reports=False)
-    for name, comp in (("iv", InducedVelocityComp), ("ia", InflowAngleComp), ("sl", SectionalLoadsComp)):
+    for name, comp in (("iv", InducedVelocityComp), ("ia", InflowAngleComp), ("sl", MomentumLoadsComp)):
         prob.model.add_subsystem(name, comp(num_nodes=NN, num_radial=NR), promotes=["*"])
     prob.setup()
     for name in ("eta2", "v_axial", "v_theta", "cl_star", "cd_star", "alpha_star", "radii", "rho", "rpm",
                  "radius", "hub_radius"):
         prob.set_val(name, values[name])
     prob.run_model()
-    for name in ("phi", "inflow_velocity", "dthrust_dr", "dtorque_dr"):
+    for name in ("phi", "inflow_speed", "dthrust_dr", "dtorque_dr"):
         values[name] = prob.get_val(name)
     return values
 
 
 @pytest.mark.parametrize("form", ["thrust", "torque"])
 def test_partials(kind, form):
-    check_component(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), _consistent(kind))
+    check_component_partials(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), _consistent(kind))
 
 
 def test_thrust_and_torque_forms_agree(kind):
     # Eq. (25) holds for the ideal induced velocities, so Eq. (31) and the torque form of Eq. (6) agree.
     values = _consistent(kind)
-    chords = [check_component(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), values)
+    chords = [check_component_partials(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), values)
               .get_val("chord_raw") for form in ("thrust", "torque")]
     np.testing.assert_allclose(chords[0], chords[1], rtol=1e-11)
     assert np.all(chords[0] > 0.0)
@@ -42,7 +43,7 @@ def test_thrust_and_torque_forms_agree(kind):
 def test_coefficients_and_zero_load():
     values = _consistent("hover")
     values["dthrust_dr"][:, 0] = 0.0
-    prob = check_component(ChordComp(num_nodes=NN, num_radial=NR), values)
+    prob = check_component_partials(ChordComp(num_nodes=NN, num_radial=NR), values)
     # An unloaded station gets zero chord, not NaN (Sec. 4.3 with dT = 0).
     np.testing.assert_array_equal(prob.get_val("chord_raw")[:, 0], 0.0)
     np.testing.assert_array_equal(prob.get_val("lift_coefficient"), np.repeat(values["cl_star"][:, None], NR, 1))
@@ -58,4 +59,4 @@ def test_nonpositive_force_coefficient_names_node_and_station(form, phi, rule):
     values["phi"] = values["phi"].copy()
     values["phi"][2, 5] = phi
     with pytest.raises(om.AnalysisError, match=rf"(?s)first at node 2, station 5 .*needs {rule}"):
-        check_component(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), values)
+        check_component_partials(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), values)

@@ -5,11 +5,12 @@ import pytest
 from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
 from scipy.optimize import brentq
 
-from bild_mdo.bild import quartic_coefficients as qc
+from bild_mdo.bild import quartic as qc
 from bild_mdo.bild.eta2 import Eta2Comp, solve_eta2
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
+from bild_mdo.utils.testing import check_component_partials
 
-from .conftest import NN, NR, check_component, state
+from .conftest import NN, NR, state
 from .test_quartic import eq22_lambda, random_domain
 
 
@@ -18,7 +19,7 @@ def lift_coefficients(n, seed):
 
 
 def test_acceptance_random_domain():
-    # Acceptance criterion of the task: 100,000 random valid points, every root in (0.5, 1) and Eq. (22) (with
+    # 100,000 random points of the valid domain: every root in (0.5, 1) and Eq. (22) (with
     # Eqs. (24), (26)) reproduced to 1e-10 relative.  Hover points satisfy lambda > V_theta/(2 L/D).
     v_x, v_t, lam, s = random_domain(100_000, seed=11)
     cl = lift_coefficients(v_x.size, seed=12)
@@ -109,7 +110,7 @@ def component_values(kind):
 
 
 def test_partials(kind):
-    prob = check_component(Eta2Comp(num_nodes=NN, num_radial=NR), component_values(kind))
+    prob = check_component_partials(Eta2Comp(num_nodes=NN, num_radial=NR), component_values(kind))
     eta = prob.get_val("eta2")
     assert np.all((eta > 0.5) & (eta <= 1.0))
     if kind == "hover":
@@ -166,15 +167,15 @@ def reference_chain(kind):
     s = values["cd_star"] / values["cl_star"]
     v_x, v_t = values["v_axial"], values["v_theta_ref"]
     b = (v_x - v_t * s) / 2
-    u_x = b + np.sqrt(b**2 + eta_ref * v_t**2 * (1 - eta_ref + v_x / v_t * s))  # Eq. (26)
+    u_axial = b + np.sqrt(b**2 + eta_ref * v_t**2 * (1 - eta_ref + v_x / v_t * s))  # Eq. (26)
     u_t = 2 * v_t * (1 - eta_ref)  # Eq. (24)
     prob = om.Problem(reports=False)
-    prob.model.add_subsystem("ideal_loading", IdealLoadingComp(num_nodes=NN, num_radial=NR), promotes=["*"])
+    prob.model.add_subsystem("ideal_loading", IdealLoadingComp(num_nodes=NN), promotes=["*"])
     prob.model.add_subsystem("eta2", Eta2Comp(num_nodes=NN, num_radial=NR), promotes=["*"])
     prob.setup(force_alloc_complex=True)
     v_theta = values["v_theta"].copy()
     v_theta[:, 2] = v_t  # station 2 is the reference station
-    for name, value in dict(u_x_ref=u_x, u_theta_ref=u_t, v_axial=v_x, v_theta_ref=v_t, v_theta=v_theta,
+    for name, value in dict(u_axial_ref=u_axial, u_theta_ref=u_t, v_axial=v_x, v_theta_ref=v_t, v_theta=v_theta,
                             cl_star=values["cl_star"], cd_star=values["cd_star"]).items():
         prob.set_val(name, value)
     prob.run_model()
@@ -191,7 +192,7 @@ def test_reference_station_round_trip(kind):
 def test_totals_through_ideal_loading_and_eta2(kind):
     # Complex-step totals exercise the complex Newton update in Eta2Comp.solve_nonlinear.
     prob, _ = reference_chain(kind)
-    wrt = ["u_x_ref", "u_theta_ref", "v_axial", "v_theta_ref", "v_theta", "cl_star", "cd_star"]
+    wrt = ["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref", "v_theta", "cl_star", "cd_star"]
     data = prob.check_totals(of=["eta2"], wrt=wrt, method="cs", out_stream=None)
     assert_check_totals(data, atol=1e-9, rtol=1e-9)
     assert_no_approx_partials(prob.model)

@@ -1,8 +1,8 @@
-"""Acceptance test of the eta2 solve (Eq. (27)) with ideal-loading constants from real reference-station solves.
+"""The eta2 solve (Eq. (27)) over the valid domain, with ideal-loading constants from real reference-station solves.
 
-Issue text: "over 100,000 random points of the valid domain (V_x in [0, 150] m/s with exact zeros included,
-V_theta in [1, 300] m/s, L/D in [5, 200], lambda > 0 from real reference solves), every root lies in (0.5, 1),
-satisfies Eq. (22) to 1e-10 relative, and no solve fails."
+Over 100,000 random points of the valid domain (V_x in [0, 150] m/s with exact zeros included, V_theta in
+[1, 300] m/s, L/D in [5, 200], lambda > 0 from reference-station solves), every root lies in (0.5, 1),
+satisfies Eq. (22) to 1e-10 relative, and no solve fails.
 
 The lambdas, C_l* and C_d* come from BILDGroup runs (Algorithm 1, steps 1-3: ISA, max-L/D point at the reference
 Reynolds number, the reference-station BEM solve with Prandtl's F, Eq. (22)) over random rotors and six polars whose
@@ -71,7 +71,7 @@ def reference_solves(polar, rng):
         # Above Re = 2e6 the built-in NACA 4412 table is clamped (the polar warns once); harmless here.
         warnings.filterwarnings("ignore", message=".*outside the tabulated range", category=UserWarning)
         prob.run_model()
-    names = ("ideal_loading_constant", "cl_star", "cd_star", "v_axial", "v_theta_ref", "u_x_ref", "u_theta_ref")
+    names = ("ideal_loading_constant", "cl_star", "cd_star", "v_axial", "v_theta_ref", "u_axial_ref", "u_theta_ref")
     return {name: prob.get_val(name).copy() for name in names}
 
 
@@ -102,9 +102,9 @@ def points(designs):
 
 
 def eq22_lambda(eta, v_x, v_t, s):
-    """Eq. (22) with u_theta from Eq. (24) and u_x from Eq. (26), in extended precision.
+    """Eq. (22) with u_theta from Eq. (24) and u_axial from Eq. (26), in extended precision.
 
-    Eq. (26) is ``u_x = b + sqrt(b**2 + c)`` with ``b = (V_x - V_theta s)/2``,
+    Eq. (26) is ``u_axial = b + sqrt(b**2 + c)`` with ``b = (V_x - V_theta s)/2``,
     ``c = eta V_theta**2 (1 - eta + s V_x/V_theta)``; for ``b < 0`` it is evaluated as the equal
     ``c / (sqrt(b**2 + c) - b)`` (product of the roots of Eq. (25)), which does not cancel near eta = 1.
     """
@@ -113,8 +113,8 @@ def eq22_lambda(eta, v_x, v_t, s):
     b = (v_x - v_t * s) / 2
     c = eta * v_t * (v_t * (1 - eta) + s * v_x)
     r = np.sqrt(b * b + c)
-    u_x = np.where(b >= 0, b + r, c / np.where(b >= 0, 1, r - b))  # Eq. (26)
-    return v_t * u_t / (2 * (2 * u_x - v_x)) + v_t * u_x / (v_t - u_t) - v_x  # Eq. (22)
+    u_axial = np.where(b >= 0, b + r, c / np.where(b >= 0, 1, r - b))  # Eq. (26)
+    return v_t * u_t / (2 * (2 * u_axial - v_x)) + v_t * u_axial / (v_t - u_t) - v_x  # Eq. (22)
 
 
 def test_designs_cover_the_domain(designs):
@@ -122,11 +122,11 @@ def test_designs_cover_the_domain(designs):
     lift_to_drag = designs["cl_star"] / designs["cd_star"]
     assert lift_to_drag.min() < 6.0 and lift_to_drag.max() > 180.0
     assert np.all((lift_to_drag >= 5.0) & (lift_to_drag <= 200.0))
-    # Appendix 7.1: lambda > u_x - V_x > 0 under Assumption 3, which every reference solve here satisfies.
+    # Appendix 7.1: lambda > u_axial - V_x > 0 under Assumption 3, which every reference solve here satisfies.
     lam = designs["ideal_loading_constant"]
-    assert np.all(designs["u_x_ref"] > designs["v_axial"])
+    assert np.all(designs["u_axial_ref"] > designs["v_axial"])
     assert np.all((designs["u_theta_ref"] > 0) & (designs["u_theta_ref"] < designs["v_theta_ref"]))
-    assert np.all(lam > designs["u_x_ref"] - designs["v_axial"])
+    assert np.all(lam > designs["u_axial_ref"] - designs["v_axial"])
     assert np.count_nonzero(designs["v_axial"] == 0.0) > 1000
 
 
@@ -142,7 +142,7 @@ def test_acceptance_with_lambda_from_reference_solves(points):
 
     # Hover existence condition (hand derivation from Eq. (35), whose lambda is twice that of Eq. (22)): the cubic
     # factor at eta2 = 1 is (2 lambda + 2 V_theta/(L/D))(2 lambda - V_theta/(L/D)), so a root in (0.5, 1) exists iff
-    # lambda > V_theta/(2 L/D); otherwise the station is unloaded, eta2 = 1 exactly (u_x = u_theta = 0).
+    # lambda > V_theta/(2 L/D); otherwise the station is unloaded, eta2 = 1 exactly (u_axial = u_theta = 0).
     hover = np.broadcast_to(v_x == 0.0, eta.shape)
     unloaded = hover & (2.0 * lam <= v_t * s)
     loaded = ~unloaded

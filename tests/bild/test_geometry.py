@@ -3,16 +3,17 @@ import openmdao.api as om
 import pytest
 
 from bild_mdo.bild.geometry import GeometryComp
-from tests.bild.conftest import NN, NR, check_component, state
+from bild_mdo.utils.testing import check_component_partials
+from tests.bild.conftest import NN, state
 
 
 def test_partials(kind):
-    check_component(GeometryComp(num_nodes=NN, num_radial=NR), state(kind))
+    check_component_partials(GeometryComp(num_nodes=NN), state(kind))
 
 
 def test_values():
     # Hand derivation: hub = 0.2 * 1.5 m, ref = 0.5 * 1.5 m.
-    prob = check_component(GeometryComp(num_nodes=1, num_radial=NR),
+    prob = check_component_partials(GeometryComp(num_nodes=1),
                            dict(radius=[1.5], hub_radius_ratio=[0.2], ref_radius_ratio=[0.5]))
     assert prob.get_val("hub_radius", units="m")[0] == pytest.approx(0.3, rel=1e-15)
     assert prob.get_val("ref_radius", units="m")[0] == pytest.approx(0.75, rel=1e-15)

@@ -3,14 +3,14 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from bild_mdo.bild import quartic_coefficients as qc
-from bild_mdo.bild.derive_quartic import derive, paper_eq34_coefficients
+from bild_mdo.bild import quartic as qc
+from tools.derive_quartic import derive, paper_eq34_coefficients
 
 
 def eq22_lambda(eta, v_x, v_t, s):
-    """Eq. (22) with u_theta from Eq. (24) and u_x from Eq. (26), evaluated in extended precision.
+    """Eq. (22) with u_theta from Eq. (24) and u_axial from Eq. (26), evaluated in extended precision.
 
-    Eq. (26) is used in its rationalised form ``u_x = c / (sqrt(b**2 + c) - b)`` when ``b < 0`` (the same
+    Eq. (26) is used in its rationalised form ``u_axial = c / (sqrt(b**2 + c) - b)`` when ``b < 0`` (the same
     number; it avoids cancellation near eta = 1) so the check is limited by eta's rounding only.
     """
     eta, v_x, v_t, s = (np.asarray(a, dtype=np.longdouble) for a in (eta, v_x, v_t, s))
@@ -18,8 +18,8 @@ def eq22_lambda(eta, v_x, v_t, s):
     b = (v_x - v_t * s) / 2
     c = eta * v_t**2 * (1 - eta + v_x / v_t * s)
     r = np.sqrt(b * b + c)
-    u_x = np.where(b >= 0, b + r, c / np.where(b >= 0, 1, r - b))  # Eq. (26)
-    return v_t * u_t / (2 * (2 * u_x - v_x)) + v_t * u_x / (v_t - u_t) - v_x
+    u_axial = np.where(b >= 0, b + r, c / np.where(b >= 0, 1, r - b))  # Eq. (26)
+    return v_t * u_t / (2 * (2 * u_axial - v_x)) + v_t * u_axial / (v_t - u_t) - v_x
 
 
 def random_domain(n, seed):

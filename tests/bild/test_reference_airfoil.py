@@ -4,19 +4,20 @@ import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
-from tests.bild.conftest import NN, NR, check_component, state
+from bild_mdo.utils.testing import check_component_partials
+from tests.bild.conftest import NN, state
 
 # cd0 scales as Re**-0.2 (turbulent skin friction), so the max-L/D point moves with Re.
 RE_DEPENDENT = AnalyticPolar(reynolds_exponent=0.2)
 
 
 def test_partials_reynolds_dependent_polar(kind):
-    check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), state(kind))
+    check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=RE_DEPENDENT), state(kind))
 
 
 def test_partials_builtin_naca4412(kind):
     # Default polar (None): the NACA 4412 surrogate; Re_ref here is inside its table (4e5 ... 1.5e6).
-    prob = check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR), state(kind))
+    prob = check_component_partials(ReferenceAirfoilComp(num_nodes=NN), state(kind))
     ratio = prob.get_val("cl_star") / prob.get_val("cd_star")
     # A cambered airfoil at Re ~ 1e6 reaches L/D of order 100 at alpha* of a few degrees.
     assert np.all((ratio > 60) & (ratio < 200))
@@ -25,7 +26,7 @@ def test_partials_builtin_naca4412(kind):
 
 def test_reynolds_number_and_closed_form(kind):
     values = state(kind)
-    prob = check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+    prob = check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=RE_DEPENDENT), values)
     # Re_ref = rho W0 c_ref / mu with W0 = sqrt(V_x**2 + (Omega r_ref)**2) (speed without induction).
     w0 = np.hypot(values["v_axial"], values["v_theta_ref"])
     reynolds = values["rho"] * w0 * values["ref_chord"] / values["mu"]
@@ -41,7 +42,7 @@ def test_nonpositive_chord_raises():
     values = state("hover")
     values["ref_chord"] = np.array([0.1, 0.0, 0.1])
     with pytest.raises(om.AnalysisError, match="ref_chord must be positive"):
-        check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+        check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=RE_DEPENDENT), values)
 
 
 @pytest.mark.parametrize("name", ["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"])
@@ -52,7 +53,7 @@ def test_nonfinite_reynolds_inputs_raise_naming_the_input(name):
     values[name][2] = np.nan if name != "mu" else np.inf
     with pytest.raises(om.AnalysisError, match=rf"{name} must be finite for the reference Reynolds number, "
                                                r"got .* at node 2"):
-        check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+        check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=RE_DEPENDENT), values)
 
 
 @pytest.mark.parametrize("name", ["rho", "mu"])
@@ -61,4 +62,4 @@ def test_nonpositive_air_properties_raise(name):
     values[name] = values[name].copy()
     values[name][0] = 0.0
     with pytest.raises(om.AnalysisError, match=f"{name} must be positive"):
-        check_component(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=RE_DEPENDENT), values)
+        check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=RE_DEPENDENT), values)

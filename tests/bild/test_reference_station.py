@@ -6,7 +6,8 @@ from openmdao.utils.assert_utils import assert_check_totals
 from bild_mdo.bem.inflow_residual import inflow_residual_value
 from bild_mdo.bem.prandtl import prandtl_loss
 from bild_mdo.bild.reference_station import ReferenceStationComp
-from tests.bild.conftest import NN, NR, check_component, state
+from bild_mdo.utils.testing import check_component_partials
+from tests.bild.conftest import NN, state
 
 WRT = ["v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius", "cl_star", "cd_star"]
 
@@ -14,7 +15,7 @@ WRT = ["v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radiu
 @pytest.mark.parametrize("loss_model", ["tip_hub", "tip", "none"])
 def test_partials_solve_and_totals(kind, loss_model):
     values = state(kind)
-    prob = check_component(ReferenceStationComp(num_nodes=NN, num_radial=NR, loss_model=loss_model), values)
+    prob = check_component_partials(ReferenceStationComp(num_nodes=NN, loss_model=loss_model), values)
     phi = prob.get_val("phi_ref")
     # The state solves Eq. (9) with F at the reference station (fixed cl*, cd*).
     sigma = 3 * values["ref_chord"] / (2 * np.pi * values["ref_radius"])
@@ -33,4 +34,4 @@ def test_negative_axial_velocity_raises():
     values = state("cruise")
     values["v_axial"] = -values["v_axial"]
     with pytest.raises(om.AnalysisError, match="v_axial >= 0"):
-        check_component(ReferenceStationComp(num_nodes=NN, num_radial=NR), values)
+        check_component_partials(ReferenceStationComp(num_nodes=NN), values)

@@ -2,7 +2,8 @@ import numpy as np
 import pytest
 
 from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
-from tests.bild.conftest import NN, NR, check_component, state
+from bild_mdo.utils.testing import check_component_partials
+from tests.bild.conftest import NN, NR, state
 
 
 def _values(kind):
@@ -13,19 +14,19 @@ def _values(kind):
 
 @pytest.mark.parametrize("k", [None, 3.0, 12.0])
 def test_partials(kind, k):
-    check_component(RootChordCorrectionComp(num_nodes=NN, num_radial=NR, correction_constant=k), _values(kind))
+    check_component_partials(RootChordCorrectionComp(num_nodes=NN, num_radial=NR, correction_constant=k), _values(kind))
 
 
 def test_off_is_identity():
     values = _values("cruise")
-    prob = check_component(RootChordCorrectionComp(num_nodes=NN, num_radial=NR), values)
+    prob = check_component_partials(RootChordCorrectionComp(num_nodes=NN, num_radial=NR), values)
     np.testing.assert_array_equal(prob.get_val("chord"), values["chord_raw"])
 
 
 def test_eq32_by_hand():
     # Eq. (32) on r/R: k = 10, r/R = 0.2 -> w = exp(-2); c = w c_ref + (1 - w) c_bc.
     values = dict(chord_raw=np.full((1, 2), 0.02), ref_chord=[0.2], radii=[[0.3, 1.5]], radius=[1.5])
-    prob = check_component(RootChordCorrectionComp(num_nodes=1, num_radial=2, correction_constant=10.0),
+    prob = check_component_partials(RootChordCorrectionComp(num_nodes=1, num_radial=2, correction_constant=10.0),
                            values)
     w = np.exp(-10.0 * np.array([0.2, 1.0]))
     np.testing.assert_allclose(prob.get_val("chord")[0], w * 0.2 + (1.0 - w) * 0.02, rtol=1e-14)

@@ -139,9 +139,10 @@ def test_vahana_bild_matches_the_full_bem_optimum(vahana):
     # assumes (Assumption 2); measured spread 0.14 % over 0.3 < r/R < 0.9.
     x = o["radii"] / vahana_hover.RADIUS
     mid = (x > 0.3) & (x < 0.9)
-    assert np.std(o["cl"][mid]) / np.mean(o["cl"][mid]) < 0.01
+    lift = o["lift_coefficient"][mid]
+    assert np.std(lift) / np.mean(lift) < 0.01
     # BILD's sections all work at C_l* (Assumption 2).
-    np.testing.assert_allclose(b["cl"], b["cl"][0], rtol=1e-12)
+    np.testing.assert_allclose(b["lift_coefficient"], b["lift_coefficient"][0], rtol=1e-12)
     assert _is_png(vahana.figure_path)
 
 

@@ -2,32 +2,37 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
+from openmdao.utils.assert_utils import assert_no_approx_partials
 
 from bild_mdo.airfoil import naca4412
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
+from bild_mdo.utils.testing import check_group_totals
 
 NN, NR = 2, 7
 
 
-def _problem(parameterization):
-    prob = om.Problem(reports=False)
-    prob.model.add_subsystem("rotor", BEMOptimizationGroup(num_nodes=NN, num_radial=NR, polar=naca4412(),
-                                                           parameterization=parameterization, num_cp=5),
-                             promotes=["*"])
-    prob.setup(force_alloc_complex=True, mode="rev")
+def _group(parameterization):
+    return BEMOptimizationGroup(num_nodes=NN, num_radial=NR, polar=naca4412(), parameterization=parameterization,
+                                num_cp=5)
+
+
+def _values(parameterization):
     ncp = NR if parameterization == "stations" else 5
     x = np.linspace(0.0, 1.0, ncp)
     # Node 0 hovers, node 1 cruises at J = 1 (V_x = J n D): both operating regimes in one vectorised run.
-    prob.set_val("v_axial", [0.0, 800.0 / 60.0 * 2.0 * 1.2])
-    prob.set_val("rpm", [800.0, 800.0])
-    prob.set_val("radius", [1.0, 1.2])
-    prob.set_val("hub_radius", [0.2, 0.24])
-    prob.set_val("altitude", [0.0, 1500.0])
-    prob.set_val("chord_ratio_cp", np.vstack([0.15 - 0.1 * x, 0.08 - 0.04 * x]))
-    prob.set_val("twist_cp", np.radians(np.vstack([25.0 - 15.0 * x, 60.0 - 35.0 * x])))
-    prob.set_val("thrust_target", [400.0, 300.0])
-    prob.set_val("energy_loss_ref", [3000.0, 1000.0])
+    return {"v_axial": [0.0, 800.0 / 60.0 * 2.0 * 1.2], "rpm": [800.0, 800.0], "radius": [1.0, 1.2],
+            "hub_radius": [0.2, 0.24], "altitude": [0.0, 1500.0],
+            "chord_ratio_cp": np.vstack([0.15 - 0.1 * x, 0.08 - 0.04 * x]),
+            "twist_cp": np.radians(np.vstack([25.0 - 15.0 * x, 60.0 - 35.0 * x])),
+            "thrust_target": [400.0, 300.0], "energy_loss_ref": [3000.0, 1000.0]}
+
+
+def _problem(parameterization):
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("rotor", _group(parameterization), promotes=["*"])
+    prob.setup(force_alloc_complex=True, mode="rev")
+    for name, value in _values(parameterization).items():
+        prob.set_val(name, value)
     prob.run_model()
     return prob
 
@@ -36,11 +41,10 @@ def _problem(parameterization):
 def test_totals(parameterization):
     prob = _problem(parameterization)
     assert np.all(prob.get_val("thrust") > 0.0)
-    of = ["energy_loss_ratio", "thrust_residual"]
-    wrt = ["chord_ratio_cp", "twist_cp", "thrust_target", "radius", "v_axial"]
-    data = prob.check_totals(of=of, wrt=wrt, method="cs", out_stream=None)
-    assert_check_totals(data, atol=1e-9, rtol=1e-8)
     assert_no_approx_partials(prob.model)
+    check_group_totals(lambda: _group(parameterization), of=["energy_loss_ratio", "thrust_residual"],
+                       wrt=["chord_ratio_cp", "twist_cp", "thrust_target", "radius", "v_axial"],
+                       values=_values(parameterization), atol=1e-9, rtol=1e-8)
 
 
 def test_objective_and_constraint_definitions():

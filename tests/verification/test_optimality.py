@@ -7,9 +7,10 @@ import pytest
 
 from bild_mdo.airfoil.builtin import get_polar
 from bild_mdo.atmosphere import isa
-from bild_mdo.bem.analysis import station_radii
+from bild_mdo.bem.analyze import station_radii
 from bild_mdo.bild.bild_group import BILDGroup
-from bild_mdo.optimization.problem import build_optimization_problem, set_optimization_case, trim_to_thrust
+from bild_mdo.optimization.problem import build_optimization_problem, set_optimization_case
+from bild_mdo.optimization.run import trim_to_thrust
 from bild_mdo.verification.case_functions import bild_batch, optimize_case
 from bild_mdo.verification.cases import SweepSpec
 from bild_mdo.verification.optimality import optimality_check, trimmed_bild_energy_loss

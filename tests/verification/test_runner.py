@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from bild_mdo.verification import ResultsStore, SweepSpec, StoreError, run_sweep
-from bild_mdo.verification.runner import run_verify_from_args, verify_parser
+from bild_mdo.verification.runner import format_duration, sweep_summary
 from tests.verification import standins
 
 SPEC = SweepSpec(levels=2)
@@ -153,27 +153,15 @@ def test_malformed_optimize_results_become_failed_rows(tmp_path):
 
 def test_progress_goes_to_the_given_stream(tmp_path):
     stream = io.StringIO()
-    run_sweep(SPEC, tmp_path / "s.sqlite", standins.bild_batch, standins.optimize, progress=stream)
+    result = run_sweep(SPEC, tmp_path / "s.sqlite", standins.bild_batch, standins.optimize, progress=stream)
     text = stream.getvalue()
-    assert "BILD: 16 cases" in text
-    # Not a terminal: only the closing plain line for a run this short.
-    assert text.rstrip().splitlines()[-1].startswith("optimise 16/16 100.0%")
+    assert text.startswith("BILD: 16 cases in ") and text.splitlines()[0].endswith("s; 0 already stored")
+    # Not a terminal: plain text (no bar redrawn in place), ending with the final count.
+    final = text.replace("\r", "\n").rstrip().splitlines()[-1]
+    assert final.startswith("optimise: 100%") and "16/16" in final
+    assert sweep_summary(SPEC, tmp_path / "s.sqlite", result).startswith(
+        f"Sweep of 16 cases in {tmp_path / 's.sqlite'}: 0 resumed, 16 computed in ")
 
 
-def test_verify_cli_helper_prints_table3_and_writes_figures(tmp_path):
-    args = verify_parser().parse_args(["--levels", "2", "--workers", "1", "--db", str(tmp_path / "v.sqlite"),
-                                       "--figures", str(tmp_path / "figs"), "--no-progress", "--optimizer", "ipopt"])
-    out = io.StringIO()
-    table = run_verify_from_args(args, standins.bild_batch, standins.optimize, stream=out)
-    text = out.getvalue()
-    assert table.num_cases == 16 and table.num_converged == 12
-    assert "Table 3 reproduction: 16 cases, 12 with both methods converged" in text
-    # The paper's Table 3 column is printed beside ours.
-    for paper_value in ("6.337e-10", "11.966", "12.406", "86.810", "2.130"):
-        assert paper_value in text
-    assert (tmp_path / "figs" / "fig4_run_time.png").stat().st_size > 10_000
-    assert (tmp_path / "figs" / "fig5_parity.png").stat().st_size > 10_000
-    # The optimiser choice is part of the sweep: the same file refuses another optimiser.
-    args.optimizer = "slsqp"
-    with pytest.raises(StoreError, match="different sweep"):
-        run_verify_from_args(args, standins.bild_batch, standins.optimize, stream=out)
+def test_format_duration():
+    assert [format_duration(s) for s in (None, float("nan"), 42.4, 185, 7620)] == ["?", "?", "42s", "3m05s", "2h07m"]

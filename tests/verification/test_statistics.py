@@ -3,15 +3,16 @@ import math
 import numpy as np
 import pytest
 
-from bild_mdo.verification.statistics import PAPER_TABLE3, format_table3, table3
+from bild_mdo.bem.metrics import METRICS_BY_NAME, VERIFIED_METRICS
+from bild_mdo.verification import statistics
+from bild_mdo.verification.statistics import PAPER_TABLE3, SCALARS, format_table3, table3
 
 
 def _row(case_id, j, converged, **values):
     row = {"case_id": case_id, "advance_ratio": j, "bild_converged": True, "converged": converged,
            "bild_time": None, "opt_time": None}
     for method in ("bild", "opt"):
-        for key in ("thrust_coefficient", "torque_coefficient", "power_coefficient", "efficiency",
-                    "figure_of_merit", "energy_loss", "chord", "twist"):
+        for key in VERIFIED_METRICS + ("chord", "twist"):
             row[f"{method}_{key}"] = None
     row.update(values)
     return row
@@ -101,3 +102,18 @@ def test_mismatched_distributions_are_an_error():
     rows = [_row(0, 1.0, True, bild_chord=np.ones(3), opt_chord=np.ones(4))]
     with pytest.raises(ValueError, match="different stations"):
         table3(rows)
+
+
+def test_scalar_rows_are_the_verified_metrics_of_the_registry():
+    assert [key for key, _, _ in SCALARS] == list(VERIFIED_METRICS)
+    # Paper Table 3 shows the energy loss in kW: the registry's display scale.
+    assert dict((key, scale) for key, _, scale in SCALARS)["energy_loss"] == METRICS_BY_NAME["energy_loss"].display_scale
+
+
+def test_a_metric_the_paper_does_not_report_gets_a_row(monkeypatch):
+    rows = [_row(0, 0.0, True, bild_solidity=0.11, opt_solidity=0.10, bild_time=0.01, opt_time=1.0)]
+    monkeypatch.setattr(statistics, "SCALARS", SCALARS + (("solidity", "Solidity sigma [min, max]", 1.0),))
+    text = format_table3(table3(rows))
+    line = next(line for line in text.splitlines() if line.startswith("Solidity"))
+    # Ours: 10 % error; the paper's columns are empty.
+    assert line.split()[-4:] == ["1", "-", "-", "-"] and "10.000" in line

@@ -1,0 +1,237 @@
+"""Plain-Python entry point to the BEM analysis: :func:`analyze_rotor` and :class:`BEMResult`."""
+from __future__ import annotations
+
+import dataclasses
+from typing import ClassVar
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.airfoil.polar import Polar
+from bild_mdo import validation
+from bild_mdo.atmosphere import MAX_ALTITUDE
+from bild_mdo.bem.bem_group import BEMAnalysisGroup
+from bild_mdo.bem.blade_element import evaluate_section
+from bild_mdo.bem.loads import SECTION_OUTPUTS
+from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
+from bild_mdo.bem.prandtl import LOSS_MODELS
+
+
+def station_radii(radius, hub_radius, num_radial):
+    """Default station radii: midpoints of ``num_radial`` equal annuli from hub to tip (m).
+
+    Use these to sample chord and twist for :func:`analyze_rotor` when ``radii`` is not given.
+
+    Returns
+    -------
+    ndarray
+        Shape ``(num_radial,)`` for scalar radii, ``(nn, num_radial)`` for arrays.
+    """
+    radius = np.asarray(radius, dtype=float)[..., None]
+    hub_radius = np.asarray(hub_radius, dtype=float)[..., None]
+    return hub_radius + (np.arange(num_radial) + 0.5) * (radius - hub_radius) / num_radial
+
+
+@dataclasses.dataclass(frozen=True)
+class BEMResult:
+    """Result of :func:`analyze_rotor`.
+
+    Per-design quantities have shape ``(nn,)`` for a batch and are 0-d arrays
+    for a single case; distributions have shape ``(nn, nr)`` or ``(nr,)``.
+    Units are listed in :attr:`UNITS` (SI; angles in rad; ``None`` = dimensionless).
+    """
+
+    thrust: np.ndarray
+    torque: np.ndarray
+    power: np.ndarray
+    efficiency: np.ndarray
+    figure_of_merit: np.ndarray
+    thrust_coefficient: np.ndarray
+    torque_coefficient: np.ndarray
+    power_coefficient: np.ndarray
+    energy_loss: np.ndarray
+    solidity: np.ndarray
+    blade_loading: np.ndarray
+    rho: np.ndarray
+    mu: np.ndarray
+    radii: np.ndarray
+    dr: np.ndarray
+    phi: np.ndarray
+    alpha: np.ndarray
+    reynolds: np.ndarray
+    lift_coefficient: np.ndarray
+    drag_coefficient: np.ndarray
+    u_axial: np.ndarray
+    u_theta: np.ndarray
+    loss_factor: np.ndarray
+    inflow_speed: np.ndarray
+    dthrust_dr: np.ndarray
+    dtorque_dr: np.ndarray
+    residual: np.ndarray
+
+    UNITS: ClassVar[dict] = {
+        **{name: units for name, (units, _) in PERFORMANCE_OUTPUTS.items()},
+        **{name: units for name, (units, _) in SECTION_OUTPUTS.items()},
+        "rho": "kg/m**3", "mu": "Pa*s", "radii": "m", "dr": "m", "phi": "rad", "residual": None,
+    }
+
+    def to_dict(self):
+        """All fields as a dict of numpy arrays (units in :attr:`UNITS`)."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+
+def _axes(value):
+    """Names of the axes of a distribution argument, for error messages."""
+    return ("design", "station") if np.ndim(value) == 2 else ("station",)
+
+
+def _voronoi_widths(radii, hub_radius, radius):
+    """Widths of the cells around given station radii, bounded by hub and tip."""
+    mid = 0.5 * (radii[:, 1:] + radii[:, :-1])
+    edges = np.concatenate([hub_radius[:, None], mid, radius[:, None]], axis=1)
+    return np.diff(edges, axis=1)
+
+
+def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, polar,
+                  altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None):
+    """Analyse one rotor or a batch of rotors in axial flow with BEM theory.
+
+    Parameters
+    ----------
+    chord : array_like
+        Chord at the stations (m), shape ``(nr,)`` or ``(nn, nr)``.
+    twist : array_like
+        Twist (pitch) angle at the stations (rad), same shape as ``chord``.
+    radius, hub_radius : float or array_like
+        Tip and hub radius (m), scalar or ``(nn,)``; ``0 <= hub_radius < radius``
+        (``hub_radius > 0`` with ``loss_model='tip_hub'``).
+    rpm : float or array_like
+        Rotational speed (rpm), > 0.
+    v_axial : float or array_like
+        Freestream axial velocity (m/s), >= 0 (0 is hover).
+    num_blades : int
+        Number of blades.
+    polar : Polar
+        Airfoil polar.
+    altitude : float or array_like
+        Geometric altitude (m) for the ISA, 0 ... 11,000.  Ignored where
+        ``rho`` and ``mu`` are both given.
+    loss_model : {'tip_hub', 'tip', 'none'}
+        Prandtl loss factor model.
+    radii : array_like, optional
+        Station radii (m), shape ``(nr,)`` or ``(nn, nr)``, increasing, within
+        ``[hub_radius, radius]``.  Default: midpoints of equal annuli
+        (:func:`station_radii`).
+    dr : array_like, optional
+        Station widths (m) for ``radii``; default: cells between the midpoints of
+        neighbouring stations, bounded by hub and tip.
+    rho, mu : float or array_like, optional
+        Air density (kg/m^3) and viscosity (Pa s) overriding the ISA (give both).
+
+    Returns
+    -------
+    BEMResult
+
+    Raises
+    ------
+    ValueError
+        Invalid input (the message names the argument).
+    openmdao.api.AnalysisError
+        If the inflow solve finds no bracket at some station.
+    """
+    if not isinstance(polar, Polar):
+        raise ValueError(f"polar must be a bild_mdo.airfoil.Polar, got {type(polar).__name__}")
+    validation.choice("loss_model", loss_model, LOSS_MODELS)
+    num_blades = validation.integer("num_blades", num_blades)
+    if (rho is None) != (mu is None):
+        raise ValueError("give both rho and mu, or neither (then the ISA at altitude is used)")
+
+    chord = validation.positive("chord", chord, units="m", ndim=(1, 2), axes=_axes(chord))
+    twist = validation.real_array("twist", twist, units="rad", ndim=(1, 2))
+    if twist.shape != chord.shape:
+        raise ValueError(f"twist must have the shape of chord {chord.shape}, got {twist.shape}")
+    nr = chord.shape[-1]
+
+    scalars = {"radius": validation.positive("radius", radius, units="m"),
+               "hub_radius": validation.non_negative("hub_radius", hub_radius, units="m"),
+               "rpm": validation.positive("rpm", rpm, units="rpm"),
+               "v_axial": validation.non_negative("v_axial", v_axial, units="m/s",
+                                                  hint="axial inflow from ahead; 0 is hover")}
+    if rho is None:
+        scalars["altitude"] = validation.in_range("altitude", altitude, 0.0, MAX_ALTITUDE, units="m",
+                                                  hint="ISA troposphere")
+    else:
+        scalars.update(rho=validation.positive("rho", rho, units="kg/m**3"),
+                       mu=validation.positive("mu", mu, units="Pa*s"))
+    sizes = {name: arr.size for name, arr in scalars.items() if arr.ndim == 1}
+    if chord.ndim == 2:
+        sizes["chord"] = chord.shape[0]
+    extra = {}
+    for name, val in (("radii", radii), ("dr", dr)):
+        if val is not None:
+            arr = validation.positive(name, val, units="m", ndim=(1, 2), axes=_axes(val))
+            if arr.shape[-1:] != (nr,):
+                raise ValueError(f"{name} must have shape ({nr},) or (nn, {nr}) like chord, got {arr.shape}")
+            if arr.ndim == 2:
+                sizes[name] = arr.shape[0]
+            extra[name] = arr
+    nn = validation.batch_size(sizes)
+    single = not sizes
+
+    def per_node(arr):
+        return np.broadcast_to(arr, (nn,)).astype(float)
+
+    def per_station(arr):
+        return np.broadcast_to(arr, (nn, nr)).astype(float)
+
+    s = {k: per_node(v) for k, v in scalars.items()}
+    chord, twist = per_station(chord), per_station(twist)
+    if loss_model == "tip_hub":
+        validation.check("hub_radius", s["hub_radius"], s["hub_radius"] <= 0.0, "positive with loss_model='tip_hub'",
+                         hint="use 'tip' without a hub")
+    validation.smaller("hub_radius", s["hub_radius"], "radius", s["radius"], hint="the tip radius")
+
+    group_kw = {}
+    if "radii" in extra:
+        r = per_station(extra["radii"])
+        validation.check("radii", r, (r < s["hub_radius"][:, None]) | (r > s["radius"][:, None]),
+                         "within [hub_radius, radius]", units="m")
+        if nr > 1 and np.any(np.diff(r, axis=1) <= 0.0):
+            raise ValueError("radii must be strictly increasing")
+        if "dr" in extra:
+            widths = per_station(extra["dr"])
+        else:
+            widths = _voronoi_widths(r, s["hub_radius"], s["radius"])
+        group_kw = dict(radial_fractions=r / s["radius"][:, None],
+                        width_fractions=widths / s["radius"][:, None])
+    elif "dr" in extra:
+        raise ValueError("dr needs radii (station widths belong to given station radii)")
+
+    use_atmosphere = "rho" not in s
+    prob = om.Problem(BEMAnalysisGroup(num_nodes=nn, num_radial=nr, num_blades=int(num_blades),
+                                       polar=polar, loss_model=loss_model,
+                                       use_atmosphere=use_atmosphere, **group_kw),
+                      reports=False)
+    prob.setup(check=False)
+    for name in ("radius", "hub_radius", "rpm", "v_axial"):
+        prob.set_val(name, s[name])
+    prob.set_val("chord", chord)
+    prob.set_val("twist", twist)
+    if use_atmosphere:
+        prob.set_val("altitude", s["altitude"])
+    else:
+        prob.set_val("rho", s["rho"])
+        prob.set_val("mu", s["mu"])
+    prob.run_model()
+
+    fields = {f.name: np.array(prob.get_val(f.name)) for f in dataclasses.fields(BEMResult)
+              if f.name != "residual"}
+    node = {name: fields[name][:, None] if name in fields else s[name][:, None]
+            for name in ("v_axial", "rpm", "rho", "mu", "radius", "hub_radius")}
+    values, _ = evaluate_section(fields["phi"], radii=fields["radii"], chord=chord, twist=twist,
+                                 num_blades=int(num_blades), polar=polar, loss_model=loss_model,
+                                 loads=False, partials=False, **node)
+    fields["residual"] = values["residual"]
+    if single:
+        fields = {k: v[0] for k, v in fields.items()}
+    return BEMResult(**fields)

@@ -1,0 +1,99 @@
+"""BEMAnalysisGroup: atmosphere, stations, inflow solve, section loads and rotor performance."""
+from __future__ import annotations
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.atmosphere import AtmosphereComp
+from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_section_options
+from bild_mdo.bem.inflow import InflowComp
+from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
+from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
+from bild_mdo.bem.performance import RotorPerformanceComp
+from bild_mdo.bem.stations import StationsComp
+
+
+class BEMAnalysisGroup(om.Group):
+    """Full BEM analysis of a rotor in axial flow (paper Sec. 3), vectorised over designs.
+
+    Feed-forward chain on RunOnce (the inflow component solves itself):
+    ``atmosphere -> stations -> inflow (phi) -> loads -> performance``.
+
+    Options
+    -------
+    num_nodes, num_radial, num_blades, polar, loss_model
+        Sizes, blades, airfoil polar (not recorded) and Prandtl loss model, as in
+        :func:`~bild_mdo.bem.blade_element.declare_section_options`.
+    use_atmosphere : bool
+        True: ``rho``, ``mu`` come from the ISA at input ``altitude``;
+        False: ``rho`` and ``mu`` are inputs of the group.
+    radial_fractions, width_fractions : array_like or None
+        Optional user stations (see :class:`~bild_mdo.bem.stations.StationsComp`).
+
+    Inputs
+    ------
+    v_axial[nn] (m/s)
+        Freestream axial velocity, >= 0.
+    rpm[nn] (rpm), radius[nn] (m), hub_radius[nn] (m)
+        Rotational speed, tip radius, hub radius.
+    chord[nn, nr] (m), twist[nn, nr] (rad)
+        Blade geometry at the stations.
+    altitude[nn] (m)
+        Geometric altitude (with ``use_atmosphere``); else rho[nn] (kg/m**3), mu[nn] (Pa*s).
+
+    Outputs
+    -------
+    radii, dr, phi and the station outputs of
+    :class:`~bild_mdo.bem.loads.BladeElementLoadsComp` (nn, nr); the per-design
+    outputs of :class:`~bild_mdo.bem.performance.RotorPerformanceComp` (nn,);
+    rho, mu, speed_of_sound (nn,) with ``use_atmosphere``.
+    """
+
+    def initialize(self):
+        declare_section_options(self.options)
+        self.options.declare("use_atmosphere", types=bool, default=True,
+                             desc="compute rho and mu from the ISA at input altitude (else they are inputs)")
+        self.options.declare("radial_fractions", default=None, allow_none=True,
+                             desc="station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
+        self.options.declare("width_fractions", default=None, allow_none=True,
+                             desc="station widths dr/R (with radial_fractions)")
+
+    def setup(self):
+        opts = self.options
+        nn, nr = opts["num_nodes"], opts["num_radial"]
+        section = dict(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
+                       polar=opts["polar"], loss_model=opts["loss_model"])
+
+        if opts["use_atmosphere"]:
+            self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn),
+                               promotes_inputs=["altitude"],
+                               promotes_outputs=["rho", "mu", "speed_of_sound"])
+        self.add_subsystem("stations",
+                           StationsComp(num_nodes=nn, num_radial=nr,
+                                        radial_fractions=opts["radial_fractions"],
+                                        width_fractions=opts["width_fractions"]),
+                           promotes_inputs=["radius", "hub_radius"],
+                           promotes_outputs=["radii", "dr"])
+        self.add_subsystem("inflow", InflowComp(**section),
+                           promotes_inputs=list(SECTION_INPUTS),
+                           promotes_outputs=["phi"])
+        self.add_subsystem("loads", BladeElementLoadsComp(**section),
+                           promotes_inputs=["phi"] + list(SECTION_INPUTS),
+                           promotes_outputs=list(SECTION_OUTPUTS))
+        self.add_subsystem("performance",
+                           RotorPerformanceComp(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"]),
+                           promotes_inputs=["dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm",
+                                            "radius", "rho"],
+                           promotes_outputs=list(PERFORMANCE_OUTPUTS))
+
+        self.set_input_defaults("v_axial", val=np.zeros(nn), units="m/s")
+        self.set_input_defaults("rpm", val=np.full(nn, 1000.0), units="rpm")
+        self.set_input_defaults("radius", val=np.ones(nn), units="m")
+        self.set_input_defaults("hub_radius", val=np.full(nn, 0.1), units="m")
+        self.set_input_defaults("chord", val=np.full((nn, nr), 0.1), units="m")
+        self.set_input_defaults("twist", val=np.full((nn, nr), 0.3), units="rad")
+        if opts["use_atmosphere"]:
+            self.set_input_defaults("altitude", val=np.zeros(nn), units="m")
+        else:
+            self.set_input_defaults("rho", val=np.full(nn, 1.225), units="kg/m**3")
+            self.set_input_defaults("mu", val=np.full(nn, 1.789e-5), units="Pa*s")

@@ -1,0 +1,281 @@
+"""Blade-section kinematics, aerodynamics and loads with forward-mode partials.
+
+Shared by :class:`~bild_mdo.bem.inflow.InflowComp` (residual and its
+partials) and :class:`~bild_mdo.bem.loads.BladeElementLoadsComp` (loads and
+their partials), so both components use one set of formulas.
+
+Kinematics: ``V_theta = Omega r`` with ``Omega = rpm pi/30`` (:mod:`bild_mdo.constants`), local solidity
+``sigma = B c / (2 pi r)``, angle of attack ``alpha = twist - phi``.
+
+Reynolds number: ``Re = rho W0 c / mu`` with ``W0 = sqrt(V_x^2 + V_theta^2)``,
+the local speed *without* induction (as CCBlade does).  This keeps ``Re``
+independent of ``phi``, so the residual stays a function of ``phi`` alone and
+the bracketed solve remains one-dimensional.  Induction typically changes the
+local speed by a few per cent, and polars vary slowly with ``Re``.
+
+Loads (blade element, Eqs. 5-7): ``W^2 = u_axial^2 + (V_theta - u_theta/2)^2``,
+``dT/dr = 1/2 rho W^2 B c C_x`` and ``dQ/dr = 1/2 rho W^2 B c C_theta r``
+(the printed Eq. (6) omits the moment arm ``r``).
+
+Every quantity is carried with a dict of partials with respect to the
+component inputs ``phi, v_axial, rpm, radii, chord, twist, rho, mu, radius,
+hub_radius`` (arrays broadcast to the station shape).
+
+BEM (:class:`~bild_mdo.bem.inflow.InflowComp`,
+:class:`~bild_mdo.bem.loads.BladeElementLoadsComp`) and BILD's reference
+station (:mod:`bild_mdo.bild.reference_station`) declare their options and
+inputs here (:func:`declare_section_options`, :func:`add_section_inputs`).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from bild_mdo.airfoil.polar import Polar
+from bild_mdo.bem.inflow_residual import (force_coefficients, induced_velocities, inflow_residual,
+                                          inflow_residual_value)
+from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
+from bild_mdo.constants import RPM_TO_RAD_PER_S
+from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
+
+#: Inputs of the BEM blade element, in declaration order.
+SECTION_INPUTS = ("v_axial", "rpm", "radius", "hub_radius", "radii", "chord", "twist", "rho", "mu")
+#: Per-node inputs (shape (nn,)) of the section components; the others are per station (nn, nr).
+NODE_INPUTS = tuple(name for name in SECTION_INPUTS if VARIABLES[name][0] == "node")
+
+
+def _real(x):
+    return np.real(x) if np.iscomplexobj(x) else x
+
+
+def _lin(*terms):
+    """Linear combination of partial dicts: ``_lin((a, da), (b, db))`` -> ``a*da + b*db``."""
+    out = {}
+    for coef, d in terms:
+        for key, val in d.items():
+            out[key] = out[key] + coef * val if key in out else coef * val
+    return out
+
+
+def reynolds_number(v_axial, v_theta, chord, rho, mu):
+    """Chord Reynolds number from the speed without induction, ``rho W0 c / mu``."""
+    return rho * np.sqrt(v_axial**2 + v_theta**2) * chord / mu
+
+
+def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
+                      num_blades, polar, loss_model):
+    """A real ``residual(phi, idx) -> (R, dR/dphi)`` over flat station indices for the solver.
+
+    All inputs are real arrays already broadcast to the flat station shape.
+    ``dR/dphi`` is the total derivative along phi (through alpha and F).
+    """
+    v_theta = rpm * RPM_TO_RAD_PER_S * radii
+    sigma = num_blades * chord / (2.0 * np.pi * radii)
+    reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
+
+    def residual(phi, idx):
+        pv = polar.evaluate(twist[idx] - phi, reynolds[idx])
+        F, dF_dphi = prandtl_loss_and_dphi(phi, radii[idx], radius[idx], hub_radius[idx], num_blades,
+                                           loss_model)
+        # Eq. (9) with F and its total phi derivative (through alpha = twist - phi and F);
+        # the same formulas as inflow_residual, without the partials the solve does not need.
+        lam = v_axial[idx] / v_theta[idx]
+        sig = sigma[idx]
+        s, c = np.sin(phi), np.cos(phi)
+        c_x = pv.cl * c - pv.cd * s
+        c_theta = pv.cl * s + pv.cd * c
+        value = lam * (sig * c_theta + 4.0 * F * s * c) + sig * c_x - 4.0 * F * s * s
+        d_explicit = (lam * (sig * c_x + 4.0 * F * (c * c - s * s)) - sig * c_theta
+                      - 8.0 * F * s * c)
+        d_cl = sig * (lam * s + c)
+        d_cd = sig * (lam * c - s)
+        d_F = 4.0 * s * (lam * c - s)
+        return value, d_explicit - d_cl * pv.dcl_dalpha - d_cd * pv.dcd_dalpha + d_F * dF_dphi
+
+    return residual
+
+
+def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope=2.0 * np.pi):
+    """Small-angle estimate of the region-1 inflow angle (rad), a first iterate for the solve.
+
+    With ``cl = a (twist - phi)``, no drag, ``F = 1`` and ``sin phi ~ phi``,
+    ``cos phi ~ 1``, the residual becomes the quadratic
+    ``(lam sigma a + 4) phi^2 - (lam sigma a twist + 4 lam - sigma a) phi - sigma a twist = 0``
+    (``lam = V_x / V_theta``), whose non-negative root is returned.  It tends
+    to ``V_x / V_theta`` for a lightly loaded blade and to the momentum-theory
+    hover angle at ``V_x = 0``.  Only a starting point: the solve keeps its bracket.
+    """
+    v_theta = rpm * RPM_TO_RAD_PER_S * radii
+    lam = v_axial / v_theta
+    sa = num_blades * chord / (2.0 * np.pi * radii) * lift_slope
+    a2 = lam * sa + 4.0
+    b = lam * sa * twist + 4.0 * lam - sa
+    disc = np.maximum(b * b + 4.0 * a2 * sa * twist, 0.0)
+    return (b + np.sqrt(disc)) / (2.0 * a2)
+
+
+def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
+                     num_blades, polar, loss_model, loads=True, partials=True):
+    """Residual, aerodynamics and (optionally) loads at every station, with partials.
+
+    Parameters
+    ----------
+    phi, radii, chord, twist : ndarray
+        Station arrays, shape (nn, nr) (rad, m, m, rad).
+    v_axial, rpm, rho, mu, radius, hub_radius : ndarray
+        Per-node arrays, shape (nn, 1) or broadcastable (m/s, rpm, kg/m^3, Pa s, m, m).
+    num_blades : int
+    polar : Polar
+    loss_model : {'tip_hub', 'tip', 'none'}
+    loads : bool
+        Also compute induced velocities, inflow speed and loads.
+    partials : bool
+        Also compute the partials (else the second return value is empty).
+
+    Returns
+    -------
+    values : dict
+        'residual', 'alpha', 'reynolds', 'lift_coefficient', 'drag_coefficient', 'loss_factor'
+        and, with ``loads``,
+        'u_axial', 'u_theta', 'inflow_speed', 'dthrust_dr', 'dtorque_dr'.
+    partials : dict
+        name -> {input name: array broadcastable to (nn, nr)} (real).
+    """
+    shape = np.broadcast_shapes(np.shape(phi), np.shape(v_axial), np.shape(radii))
+    ones = np.ones(shape)
+    omega = rpm * RPM_TO_RAD_PER_S
+    v_theta = omega * radii
+    sigma = num_blades * chord / (2.0 * np.pi * radii)
+    alpha = twist - phi
+    w0 = np.sqrt(v_axial**2 + v_theta**2)
+    reynolds = rho * w0 * chord / mu
+    pv = polar.evaluate(alpha, reynolds)
+    loss = prandtl_loss(phi, radii, radius, hub_radius, num_blades, loss_model)
+    values = {"residual": inflow_residual_value(phi, v_axial, v_theta, sigma, pv.cl, pv.cd, loss.F),
+              "alpha": alpha * ones, "reynolds": reynolds * ones, "lift_coefficient": pv.cl,
+              "drag_coefficient": pv.cd,
+              "loss_factor": loss.F * ones}
+    if loads:
+        c_x, c_theta = force_coefficients(phi, pv.cl, pv.cd)
+        # Eq. (8) with F
+        denom = 4.0 * loss.F * np.sin(phi) * np.cos(phi) + sigma * c_theta
+        u_axial = v_axial + v_theta * sigma * c_x / denom
+        u_theta = 2.0 * v_theta * sigma * c_theta / denom
+        # Eq. (7): W^2 = u_axial^2 + (V_theta - u_theta/2)^2
+        w2 = u_axial**2 + (v_theta - 0.5 * u_theta) ** 2
+        # Eqs. (5), (6): dT/dr = 1/2 rho W^2 B c C_x, dQ/dr = 1/2 rho W^2 B c C_theta r
+        q = 0.5 * rho * w2 * num_blades * chord
+        values.update(u_axial=u_axial, u_theta=u_theta, inflow_speed=np.sqrt(w2),
+                      dthrust_dr=q * c_x, dtorque_dr=q * c_theta * radii)
+    if not partials:
+        return values, {}
+    return values, _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0,
+                                     reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones)
+
+
+def _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu,
+                      pv, loss, num_blades, loss_model, loads, ones):
+    """Forward-mode partials of every section quantity with respect to the component inputs."""
+    phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu = map(
+        _real, (phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu))
+    cl, cd = _real(pv.cl), _real(pv.cd)
+    F = _real(loss.F)
+    res = inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F)
+
+    d_phi = {"phi": ones}
+    d_vx = {"v_axial": ones}
+    d_vtheta = {"rpm": RPM_TO_RAD_PER_S * radii * ones, "radii": omega * ones}
+    d_sigma = {"chord": sigma / chord * ones, "radii": -sigma / radii * ones}
+    d_alpha = {"twist": ones, "phi": -ones}
+    d_w0 = _lin((v_axial / w0, d_vx), (v_theta / w0, d_vtheta))
+    d_re = _lin((reynolds / w0, d_w0), (reynolds / chord, {"chord": ones}),
+                (reynolds / rho, {"rho": ones}), (-reynolds / mu, {"mu": ones}))
+    d_cl = _lin((pv.dcl_dalpha, d_alpha), (pv.dcl_dre, d_re))
+    d_cd = _lin((pv.dcd_dalpha, d_alpha), (pv.dcd_dre, d_re))
+    d_F = loss_partials(loss, loss_model)
+    d_res = _lin((res.dR_dphi, d_phi), (res.dR_dv_axial, d_vx), (res.dR_dv_theta, d_vtheta),
+                 (res.dR_dsigma, d_sigma), (res.dR_dcl, d_cl), (res.dR_dcd, d_cd),
+                 (res.dR_dF, d_F))
+    partials = {"residual": d_res, "alpha": d_alpha, "reynolds": d_re, "lift_coefficient": d_cl,
+                "drag_coefficient": d_cd, "loss_factor": d_F}
+    if not loads:
+        return partials
+
+    ind = induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F)
+    d_ux = _lin((ind.du_axial_dphi, d_phi), (ind.du_axial_dv_axial, d_vx),
+                (ind.du_axial_dv_theta, d_vtheta), (ind.du_axial_dsigma, d_sigma),
+                (ind.du_axial_dcl, d_cl), (ind.du_axial_dcd, d_cd), (ind.du_axial_dF, d_F))
+    d_ut = _lin((ind.du_theta_dphi, d_phi), (ind.du_theta_dv_theta, d_vtheta),
+                (ind.du_theta_dsigma, d_sigma), (ind.du_theta_dcl, d_cl),
+                (ind.du_theta_dcd, d_cd), (ind.du_theta_dF, d_F))
+
+    v_tan = v_theta - 0.5 * ind.u_theta
+    w2 = ind.u_axial**2 + v_tan**2
+    d_vtan = _lin((1.0, d_vtheta), (-0.5, d_ut))
+    d_w2 = _lin((2.0 * ind.u_axial, d_ux), (2.0 * v_tan, d_vtan))
+    d_w = _lin((0.5 / np.sqrt(w2), d_w2))
+
+    s, c = np.sin(phi), np.cos(phi)
+    c_x, c_theta = force_coefficients(phi, cl, cd)
+    d_cx = _lin((-c_theta, d_phi), (c, d_cl), (-s, d_cd))
+    d_ctheta = _lin((c_x, d_phi), (s, d_cl), (c, d_cd))
+    half_b = 0.5 * num_blades
+    q = half_b * rho * w2 * chord
+    d_q = _lin((half_b * rho * chord, d_w2), (half_b * w2 * chord, {"rho": ones}),
+               (half_b * rho * w2, {"chord": ones}))
+    d_dthrust = _lin((c_x, d_q), (q, d_cx))
+    d_dtorque = _lin((c_theta * radii, d_q), (q * radii, d_ctheta), (q * c_theta, {"radii": ones}))
+    partials.update(u_axial=d_ux, u_theta=d_ut, inflow_speed=d_w, dthrust_dr=d_dthrust,
+                    dtorque_dr=d_dtorque)
+    return partials
+
+
+def declare_section_options(options, radial=True, polar=True):
+    """Options of a blade-element component: sizes, ``num_blades``, the ``polar`` and the ``loss_model``.
+
+    Parameters
+    ----------
+    options : OptionsDictionary
+        The component's ``self.options``.
+    radial : bool
+        Whether the component has radial stations (False for BILD's reference station).
+    polar : bool
+        Whether the component reads the polar (False where ``C_l*, C_d*`` are inputs).
+    """
+    declare_size_options(options, radial=radial)
+    options.declare("num_blades", types=int, default=3, desc="number of blades B")
+    if polar:
+        options.declare("polar", types=Polar, recordable=False, desc="airfoil polar cl, cd (alpha, Re)")
+    options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
+                    desc="Prandtl loss factor: tip x hub, tip only, or none")
+
+
+def add_section_inputs(comp, names=SECTION_INPUTS, **values):
+    """Declare the blade-element inputs ``names`` on ``comp`` (BEM stations or BILD's reference station).
+
+    Parameters
+    ----------
+    comp : openmdao.api.Component
+        Called in its ``setup``.
+    names : iterable of str
+        Input names of :data:`bild_mdo.utils.options.VARIABLES`; by default the
+        BEM section inputs :data:`SECTION_INPUTS`.
+    **values
+        Default values other than the catalogue's.
+    """
+    if "radii" in names and "radii" not in values:
+        values["radii"] = np.linspace(0.2, 0.95, comp.options["num_radial"])
+    add_inputs(comp, names, **values)
+
+
+def section_input_names(loss_model):
+    """Inputs the section quantities depend on (radius / hub radius only through the loss factor)."""
+    return ["v_axial", "rpm", "radii", "chord", "twist", "rho", "mu"] + list(loss_inputs(loss_model))
+
+
+def section_arguments(inputs, options):
+    """Keyword arguments for :func:`evaluate_section` from component inputs (node inputs as (nn, 1))."""
+    kw = {name: inputs[name][:, None] for name in NODE_INPUTS}
+    kw.update(radii=inputs["radii"], chord=inputs["chord"], twist=inputs["twist"],
+              num_blades=options["num_blades"], polar=options["polar"],
+              loss_model=options["loss_model"])
+    return kw

@@ -1,0 +1,99 @@
+"""BladeElementLoadsComp: section aerodynamics and blade-element loads at the solved inflow angle."""
+from __future__ import annotations
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
+                                        evaluate_section, section_arguments, section_input_names)
+from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
+
+#: Station outputs: name -> (units, description).
+SECTION_OUTPUTS = {
+    "alpha": ("rad", "angle of attack alpha = twist - phi"),
+    "reynolds": (None, "chord Reynolds number rho W0 c / mu, W0 = sqrt(V_x^2 + V_theta^2)"),
+    "lift_coefficient": (None, "section lift coefficient C_l"),
+    "drag_coefficient": (None, "section drag coefficient C_d"),
+    "u_axial": ("m/s", "axial velocity at the disk u_axial (Eq. 8)"),
+    "u_theta": ("m/s", "tangential induced velocity u_theta (Eq. 8)"),
+    "loss_factor": (None, "Prandtl loss factor F"),
+    "inflow_speed": ("m/s", "inflow speed W = sqrt(u_axial^2 + (V_theta - u_theta/2)^2) (Eq. 7)"),
+    "dthrust_dr": ("N/m", "sectional thrust per unit span, all blades (Eq. 5)"),
+    "dtorque_dr": ("N*m/m", "sectional torque per unit span, all blades (Eq. 6 with the arm r)"),
+}
+
+
+class BladeElementLoadsComp(om.ExplicitComponent):
+    """Angle of attack, polar, induced velocities and blade-element loads (Eqs. 5-8).
+
+    ``dT/dr = 1/2 rho W^2 B c C_x`` and ``dQ/dr = 1/2 rho W^2 B c C_theta r`` with
+    ``W^2 = u_axial^2 + (V_theta - u_theta/2)^2`` and ``u_axial, u_theta`` from
+    Eq. (8) with the Prandtl factor.  At the converged ``phi`` these equal the
+    momentum loads ``4 pi rho u_axial (u_axial - V_x) r F`` and
+    ``2 pi rho u_axial u_theta r^2 F`` (:class:`~bild_mdo.bild.momentum_loads.MomentumLoadsComp`).
+
+    Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
+    :func:`~bild_mdo.bem.blade_element.declare_section_options`.
+
+    Inputs
+    ------
+    phi[nn, nr] (rad)
+        Inflow angle, and the blade-element inputs
+        (:data:`~bild_mdo.bem.blade_element.SECTION_INPUTS`).
+
+    Outputs
+    -------
+    alpha[nn, nr] (rad), reynolds[nn, nr], lift_coefficient[nn, nr], drag_coefficient[nn, nr], u_axial[nn, nr] (m/s),
+    u_theta[nn, nr] (m/s), loss_factor[nn, nr], inflow_speed[nn, nr] (m/s),
+    dthrust_dr[nn, nr] (N/m), dtorque_dr[nn, nr] (N*m/m)
+    """
+
+    def initialize(self):
+        declare_section_options(self.options)
+
+    def setup(self):
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        self.add_input("phi", val=np.full((nn, nr), 0.2), units="rad", desc="inflow angle")
+        add_section_inputs(self)
+        for name, (units, desc) in SECTION_OUTPUTS.items():
+            self.add_output(name, val=np.ones((nn, nr)), units=units, desc=desc)
+
+    def _dependencies(self, output):
+        loss_model = self.options["loss_model"]
+        names = ["phi"] + section_input_names(loss_model)
+        if output == "alpha":
+            return ["phi", "twist"]
+        if output == "reynolds":
+            return ["v_axial", "rpm", "radii", "chord", "rho", "mu"]
+        if output in ("lift_coefficient", "drag_coefficient"):
+            return ["phi", "twist", "v_axial", "rpm", "radii", "chord", "rho", "mu"]
+        if output == "loss_factor":
+            if loss_model == "none":
+                return []
+            return [n for n in names if n in ("phi", "radii", "radius", "hub_radius")]
+        return names
+
+    def setup_partials(self):
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        rows_s, cols_s = dist_wrt_dist(nn, nr)
+        rows_n, cols_n = dist_wrt_node(nn, nr)
+        for out in SECTION_OUTPUTS:
+            for name in self._dependencies(out):
+                if name in NODE_INPUTS:
+                    self.declare_partials(out, name, rows=rows_n, cols=cols_n)
+                else:
+                    self.declare_partials(out, name, rows=rows_s, cols=cols_s)
+
+    def compute(self, inputs, outputs):
+        values, _ = evaluate_section(inputs["phi"], partials=False,
+                                     **section_arguments(inputs, self.options))
+        for name in SECTION_OUTPUTS:
+            outputs[name] = values[name]
+
+    def compute_partials(self, inputs, partials):
+        _, d = evaluate_section(inputs["phi"], **section_arguments(inputs, self.options))
+        shape = inputs["phi"].shape
+        for out in SECTION_OUTPUTS:
+            for name in self._dependencies(out):
+                val = d[out].get(name)
+                partials[out, name] = 0.0 if val is None else np.broadcast_to(val, shape).ravel()

@@ -1,0 +1,63 @@
+"""The one registry of per-design performance outputs (paper Table 2).
+
+Every per-design metric that the BEM analysis and BILD report is one
+:class:`Metric` entry here.  The OpenMDAO outputs of
+:class:`~bild_mdo.bem.performance.RotorPerformanceComp`, the fields of the
+result objects, the text tables, the results store of the verification sweep
+and its statistics all read this tuple, so adding a metric is one entry here
+plus its formula and partials in :func:`~bild_mdo.bem.performance.rotor_performance`.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+
+class Metric(NamedTuple):
+    """One per-design output.
+
+    Attributes
+    ----------
+    name : str
+        Output and field name (snake_case).
+    units : str or None
+        OpenMDAO units (SI); None for nondimensional values.
+    description : str
+        One line with its definition.
+    label : str
+        Short column title for text tables, with its display units.
+    display_scale : float
+        Factor from SI to the display units of ``label`` (W -> kW is 1e-3).
+    verified : bool
+        Whether the verification sweep stores it per method and compares BILD
+        against the optimum (the quantities of the paper's Table 3).
+    """
+
+    name: str
+    units: str | None
+    description: str
+    label: str
+    display_scale: float = 1.0
+    verified: bool = False
+
+
+METRICS = (
+    Metric("thrust", "N", "rotor thrust T = sum(dT/dr dr)", "T [N]"),
+    Metric("torque", "N*m", "rotor torque Q = sum(dQ/dr dr)", "Q [N m]"),
+    Metric("power", "W", "shaft power P = Omega Q", "P [kW]", 1e-3),
+    Metric("thrust_coefficient", None, "C_T = T / (rho n^2 D^4), n in rev/s, D = 2R", "C_T [-]", verified=True),
+    Metric("torque_coefficient", None, "C_Q = Q / (rho n^2 D^5)", "C_Q [-]", verified=True),
+    Metric("power_coefficient", None, "C_P = P / (rho n^3 D^5)", "C_P [-]", verified=True),
+    Metric("efficiency", None, "propulsive efficiency eta = V_x T / (Omega Q)", "eta [-]", verified=True),
+    Metric("figure_of_merit", None, "figure of merit FM = T/P sqrt(T / (2 pi R^2 rho)) (odd in T)", "FM [-]",
+           verified=True),
+    Metric("energy_loss", "W", "rate of energy loss E = Omega Q - V_x T", "E [kW]", 1e-3, verified=True),
+    Metric("solidity", None, "blade solidity sigma_r = B sum(c dr) / (pi R^2)", "sigma [-]"),
+    Metric("blade_loading", None, "blade loading C_T / sigma_r", "C_T/sigma [-]"),
+)
+
+#: name -> Metric.
+METRICS_BY_NAME = {metric.name: metric for metric in METRICS}
+#: Per-design outputs: name -> (units, description), the form OpenMDAO declarations use.
+PERFORMANCE_OUTPUTS = {metric.name: (metric.units, metric.description) for metric in METRICS}
+#: The metrics the verification sweep stores per method (the paper's Table 3 quantities), in registry order.
+VERIFIED_METRICS = tuple(metric.name for metric in METRICS if metric.verified)

@@ -1,0 +1,155 @@
+"""Sectional thrust, torque and energy loss of the ideally loaded rotor (Eqs. (1), (2), (12))."""
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.bem.blade_element import declare_section_options
+from bild_mdo.bem.prandtl import loss_inputs, loss_partials, prandtl_loss
+from bild_mdo.constants import RPM_TO_RAD_PER_S
+from bild_mdo.utils.options import add_inputs, add_outputs
+from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
+
+
+class MomentumLoadsComp(om.ExplicitComponent):
+    """Momentum-theory loads of the ideal induced velocities, with Prandtl's loss factor.
+
+    ::
+
+        F     = F_tip(phi, r) F_hub(phi, r)                 Prandtl (paper Sec. 3)
+        dT/dr = 4 pi rho u_axial (u_axial - V_x) r F                 Eq. (1)
+        dQ/dr = 2 pi rho u_axial u_theta r**2 F                  Eq. (2)
+        dE/dr = Omega dQ/dr - V_x dT/dr                      Eq. (12)
+
+    The paper leaves ``F`` out of the presentation but uses it in every
+    result; multiplying both momentum loads by the same ``F`` keeps Eq. (25)
+    (the ratio of thrust to torque) unchanged, so a BEM analysis with the same
+    loss model reproduces these loads on the back-computed blade.
+
+    Options
+    -------
+    num_nodes, num_radial, num_blades : int
+        Sizes (:func:`~bild_mdo.utils.options.declare_size_options`) and the number of blades B.
+    loss_model : str
+        ``'tip_hub'`` (default), ``'tip'`` or ``'none'``.
+
+    Inputs
+    ------
+    u_axial[nn, nr] (m/s), u_theta[nn, nr] (m/s)
+        Ideal axial velocity at the disk and tangential induced velocity.
+    phi[nn, nr] (rad)
+        Inflow angle (for the loss factor).
+    radii[nn, nr] (m)
+        Station radii.
+    v_axial[nn] (m/s), rho[nn] (kg/m**3), rpm[nn] (rpm)
+        Free stream velocity, density, rotor speed.
+    radius[nn] (m), hub_radius[nn] (m)
+        Tip and hub radii (for the loss factor).
+
+    Outputs
+    -------
+    loss_factor[nn, nr] (-)
+        Prandtl tip/hub loss factor F.
+    dthrust_dr[nn, nr] (N/m)
+        dT/dr.
+    dtorque_dr[nn, nr] (N*m/m)
+        dQ/dr.
+    denergy_loss_dr[nn, nr] (W/m)
+        dE/dr, the rate of energy loss per unit span.
+    """
+
+    def initialize(self):
+        declare_section_options(self.options, polar=False)
+
+    def setup(self):
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        add_inputs(self, ("u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius", "hub_radius"))
+        add_outputs(self, ("loss_factor", "dthrust_dr", "dtorque_dr"))
+        self.add_output("denergy_loss_dr", val=np.ones((nn, nr)), units="W/m",
+                        desc="sectional rate of energy loss dE/dr, Eq. (12)")
+
+    def _loss_inputs(self):
+        """Inputs that the loss factor depends on (exact sparsity per loss model)."""
+        model = self.options["loss_model"]
+        return [] if model == "none" else ["phi", *loss_inputs(model)]
+
+    def setup_partials(self):
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        loss_inputs = self._loss_inputs()
+        dist = [name for name in ("phi",) if name in loss_inputs]
+        node = [name for name in ("radius", "hub_radius") if name in loss_inputs]
+        rows, cols = dist_wrt_dist(nn, nr)
+        if loss_inputs:
+            self.declare_partials("loss_factor", ["radii"] + dist, rows=rows, cols=cols)
+        self.declare_partials(["dthrust_dr", "denergy_loss_dr"], ["u_axial", "radii"] + dist,
+                              rows=rows, cols=cols)
+        self.declare_partials(["dtorque_dr", "denergy_loss_dr"],
+                              ["u_axial", "u_theta", "radii"] + dist, rows=rows, cols=cols)
+        rows, cols = dist_wrt_node(nn, nr)
+        if node:
+            self.declare_partials("loss_factor", node, rows=rows, cols=cols)
+        self.declare_partials(["dthrust_dr", "denergy_loss_dr"], ["v_axial", "rho"] + node,
+                              rows=rows, cols=cols)
+        self.declare_partials(["dtorque_dr", "denergy_loss_dr"], ["rho"] + node,
+                              rows=rows, cols=cols)
+        self.declare_partials("denergy_loss_dr", "rpm", rows=rows, cols=cols)
+
+    def _loss(self, inputs):
+        nr = self.options["num_radial"]
+        return prandtl_loss(inputs["phi"], inputs["radii"],
+                            np.repeat(inputs["radius"][:, None], nr, axis=1),
+                            np.repeat(inputs["hub_radius"][:, None], nr, axis=1),
+                            self.options["num_blades"], self.options["loss_model"])
+
+    def _terms(self, inputs):
+        """Loss factor, the inputs broadcast to (nn, nr), and the loads of Eqs. (1), (2) without ``F``."""
+        u_axial, u_t, r = inputs["u_axial"], inputs["u_theta"], inputs["radii"]
+        v_x = inputs["v_axial"][:, None]
+        rho = inputs["rho"][:, None]
+        omega = RPM_TO_RAD_PER_S * inputs["rpm"][:, None]
+        t_no_f = 4.0 * np.pi * rho * u_axial * (u_axial - v_x) * r
+        q_no_f = 2.0 * np.pi * rho * u_axial * u_t * r ** 2
+        return self._loss(inputs), u_axial, u_t, r, v_x, rho, omega, t_no_f, q_no_f
+
+    def compute(self, inputs, outputs):
+        loss, _, _, _, v_x, _, omega, t_no_f, q_no_f = self._terms(inputs)
+        thrust, torque = t_no_f * loss.F, q_no_f * loss.F
+        outputs["loss_factor"] = loss.F
+        outputs["dthrust_dr"] = thrust
+        outputs["dtorque_dr"] = torque
+        outputs["denergy_loss_dr"] = omega * torque - v_x * thrust
+
+    def compute_partials(self, inputs, partials):
+        loss, u_axial, u_t, r, v_x, rho, omega, t_no_f, q_no_f = self._terms(inputs)
+        f = loss.F
+        thrust, torque = t_no_f * f, q_no_f * f
+
+        d_thrust = {
+            "u_axial": 4.0 * np.pi * rho * (2.0 * u_axial - v_x) * r * f,
+            "radii": t_no_f / r * f + t_no_f * loss.dF_dr,
+            "v_axial": -4.0 * np.pi * rho * u_axial * r * f,
+            "rho": thrust / rho,
+        }
+        d_torque = {
+            "u_axial": 2.0 * np.pi * rho * u_t * r ** 2 * f,
+            "u_theta": 2.0 * np.pi * rho * u_axial * r ** 2 * f,
+            "radii": 2.0 * q_no_f / r * f + q_no_f * loss.dF_dr,
+            "rho": torque / rho,
+        }
+        d_loss = loss_partials(loss, self.options["loss_model"])
+        for name in self._loss_inputs():
+            d_thrust[name] = t_no_f * d_loss[name]
+            d_torque[name] = q_no_f * d_loss[name]
+        if self.options["loss_model"] != "none":
+            partials["loss_factor", "radii"] = loss.dF_dr.ravel()
+            for name in self._loss_inputs():
+                partials["loss_factor", name] = d_loss[name].ravel()
+
+        for name, value in d_thrust.items():
+            partials["dthrust_dr", name] = value.ravel()
+        for name, value in d_torque.items():
+            partials["dtorque_dr", name] = value.ravel()
+        for name in set(d_thrust) | set(d_torque):
+            value = omega * d_torque.get(name, 0.0) - v_x * d_thrust.get(name, 0.0)
+            if name == "v_axial":
+                value = value - thrust
+            partials["denergy_loss_dr", name] = np.broadcast_to(value, u_axial.shape).ravel()
+        partials["denergy_loss_dr", "rpm"] = (RPM_TO_RAD_PER_S * torque).ravel()

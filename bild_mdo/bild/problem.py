@@ -1,0 +1,87 @@
+"""The set-up BILD problem behind :func:`~bild_mdo.results.design.design_rotor`, cached by configuration.
+
+Setting up a :class:`~bild_mdo.bild.bild_group.BILDGroup` costs far more than
+running it, so the problems are kept by configuration (sizes, blades, polar,
+loss model, chord form, root-chord correction, input mode) and reused; the
+caller sets the inputs and runs the model.  A 10,000-design model holds a few
+hundred MB of vectors and Jacobians, so only a handful are kept.
+"""
+from __future__ import annotations
+
+import collections
+import functools
+
+import openmdao.api as om
+
+from bild_mdo import validation
+from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.bild.bild_group import BILDGroup
+
+# Set-up problems by configuration, least recently used first.
+_PROBLEM_CACHE = collections.OrderedDict()
+_PROBLEM_CACHE_SIZE = 4
+
+
+def clear_model_cache():
+    """Forget the set-up BILD problems cached by :func:`bild_problem` (frees their memory)."""
+    _PROBLEM_CACHE.clear()
+
+
+@functools.lru_cache(maxsize=None)
+def _builtin_polar(name):
+    # One object per name, so the model cache (keyed on the polar object) is hit on repeated calls.
+    return resolve_polar(name)
+
+
+def _polar(airfoil):
+    """The polar of ``airfoil`` (a Polar or a built-in name), one object per built-in name."""
+    if isinstance(airfoil, str):
+        resolve_polar(airfoil)  # the one message for an unknown name
+        return _builtin_polar(airfoil.strip().lower())
+    return resolve_polar(airfoil)
+
+
+def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_form, correction, input_mode):
+    key = (num_nodes, num_radial, num_blades, id(polar), loss_model, chord_form, correction, input_mode)
+    hit = _PROBLEM_CACHE.get(key)
+    # id() can be reused after an object dies; the stored reference proves it is the same polar.
+    if hit is not None and hit[0] is polar:
+        _PROBLEM_CACHE.move_to_end(key)
+        return hit[1]
+    group = BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades, polar=polar,
+                      loss_model=loss_model, chord_form=chord_form, root_chord_correction=correction,
+                      input_mode=input_mode)
+    prob = om.Problem(group, reports=False)
+    prob.setup(check=False)
+    prob.final_setup()
+    _PROBLEM_CACHE[key] = (polar, prob)
+    while len(_PROBLEM_CACHE) > _PROBLEM_CACHE_SIZE:
+        _PROBLEM_CACHE.popitem(last=False)
+    return prob
+
+
+def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", loss_model="tip_hub",
+                 chord_form="thrust", root_chord_correction=None, input_mode="v_axial"):
+    """The cached, set-up BILD problem :func:`~bild_mdo.results.design.design_rotor` uses for this configuration.
+
+    For users who want OpenMDAO access (totals, recorders) to the same model;
+    inputs are promoted names of :class:`~bild_mdo.bild.BILDGroup`.
+
+    Parameters
+    ----------
+    num_nodes, num_radial, num_blades : int
+        Designs, radial stations and blades (integers >= 1).
+    airfoil : Polar or str
+        A polar or a built-in airfoil name (:func:`bild_mdo.airfoil.builtin.resolve_polar`).
+    loss_model, chord_form, root_chord_correction, input_mode
+        Options of :class:`~bild_mdo.bild.BILDGroup`.
+
+    Returns
+    -------
+    openmdao.api.Problem
+        Set up; the same object for the same configuration while it stays in the cache.
+    """
+    polar = _polar(airfoil)
+    return _bild_problem(validation.integer("num_nodes", num_nodes), validation.integer("num_radial", num_radial),
+                         validation.integer("num_blades", num_blades), polar, loss_model, chord_form,
+                         root_chord_correction, input_mode)

@@ -1,0 +1,1 @@
+"""The ``bild-mdo`` command line (entry point :func:`bild_mdo.cli.main.main`)."""

@@ -1,0 +1,80 @@
+"""``bild-mdo analyze``: BEM off-design analysis of a blade geometry file over J or rpm."""
+from __future__ import annotations
+
+import numpy as np
+
+from bild_mdo import validation
+from bild_mdo.airfoil.builtin import available_polars
+from bild_mdo.bem.prandtl import LOSS_MODELS
+from bild_mdo.io.files import read_geometry
+from bild_mdo.plots.curves import plot_performance_curves
+from bild_mdo.results.off_design import off_design_sweep
+
+#: One-line help of the subcommand.
+HELP = "BEM off-design analysis of a blade geometry file over J or rpm"
+#: Description of the subcommand.
+DESCRIPTION = (
+    "Analyse a fixed blade (a CSV, JSON or QPROP file as written by 'bild-mdo design', or any QPROP propeller "
+    "file) with BEM over a range of advance ratios J = V/(nD) [-] at fixed rpm, or of rotor speeds [rpm] at fixed "
+    "axial velocity [m/s], in one vectorised run.  Prints T [N], Q [N m], P [kW], eta, FM, C_T, C_Q, C_P and the "
+    "maximum-efficiency point.")
+
+
+def add_analyze_arguments(parser):
+    """Add the ``analyze`` options to an argparse parser and return it."""
+    parser.add_argument("geometry", metavar="GEOMETRY_FILE", help="blade geometry: .csv, .json, or a QPROP file")
+    sweep = parser.add_mutually_exclusive_group(required=True)
+    sweep.add_argument("--advance-ratio", type=float, nargs=3, metavar=("START", "STOP", "N"),
+                       help="sweep J [-] from START to STOP in N points, at --at-rpm")
+    sweep.add_argument("--rpm", type=float, nargs=3, metavar=("START", "STOP", "N"),
+                       help="sweep the rotor speed [rpm] from START to STOP in N points, at --v-axial")
+    parser.add_argument("--at-rpm", type=float, default=None, metavar="RPM",
+                        help="rotor speed [rpm] of a J sweep (default: the design rpm stored in the file)")
+    parser.add_argument("--v-axial", type=float, default=None, metavar="V",
+                        help="axial velocity [m/s] of an rpm sweep (default: the file's design value, else 0)")
+    parser.add_argument("--altitude", type=float, default=None, metavar="H",
+                        help="ISA altitude [m] (default: the file's design altitude, else 0)")
+    parser.add_argument("--airfoil", choices=available_polars(), default=None,
+                        help="airfoil polar (default: the airfoil named in the file; for a foreign QPROP file, "
+                             "its CL/CD model lines)")
+    parser.add_argument("--loss-model", choices=LOSS_MODELS, default=None,
+                        help="Prandtl loss factor (default: the file's, else tip_hub)")
+    parser.add_argument("--design", type=int, default=0, metavar="I",
+                        help="design to analyse in a multi-design JSON file [-]")
+    parser.add_argument("--csv", metavar="FILE", help="write the performance table as CSV (units in the header)")
+    parser.add_argument("--plot", metavar="FILE.png", help="write the performance curves as PNG (needs matplotlib)")
+    return parser
+
+
+def _sweep_points(option, triple):
+    start, stop, count = triple
+    return np.linspace(start, stop, validation.integer(f"{option} N", count))
+
+
+def run_analyze(args, out):
+    """Read the geometry file of parsed ``analyze`` options, sweep it, print the table and write the files.
+
+    Returns
+    -------
+    int
+        Exit code, 0.
+    """
+    # Argument errors first: they need no file.
+    points = (_sweep_points("--advance-ratio", args.advance_ratio) if args.advance_ratio is not None
+              else _sweep_points("--rpm", args.rpm))
+    geometry = read_geometry(args.geometry, design=args.design)
+    kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=args.airfoil)
+    if args.advance_ratio is not None:
+        result = off_design_sweep(geometry, advance_ratios=points, rpm=args.at_rpm, **kwargs)
+    else:
+        result = off_design_sweep(geometry, rpms=points, v_axial=args.v_axial, **kwargs)
+    print(f"geometry: {args.geometry}: {geometry.num_radial} stations, B = {geometry.num_blades}, "
+          f"R = {geometry.radius:.6g} m, hub radius {geometry.hub_radius:.6g} m, "
+          f"airfoil {args.airfoil or geometry.airfoil or 'from the QPROP CL/CD lines'}", file=out)
+    print(result.summary(), file=out)
+    if args.csv:
+        print(f"wrote {result.to_csv(args.csv)}", file=out)
+    if args.plot:
+        plot_performance_curves(result, args.plot)
+        print(f"wrote {args.plot}", file=out)
+    return 0

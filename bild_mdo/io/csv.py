@@ -1,0 +1,132 @@
+"""Blade geometry as CSV (``.csv``): one row per station, metadata in comment lines.
+
+Comment lines ``# key [unit]: value`` hold the metadata, then one header row and
+one row per station::
+
+    # bild-mdo rotor geometry, format 1
+    # name: bild-mdo design (naca4412, B=3)
+    # airfoil: naca4412
+    # num_blades: 3
+    # loss_model: tip_hub
+    # radius [m]: 1.5
+    # hub_radius [m]: 0.3
+    # design_point.v_axial [m/s]: 0
+    # design_point.rpm [rpm]: 800
+    ...
+    r [m],chord [m],twist [deg]
+    0.32,0.1359434876,25.930843669
+    ...
+
+On reading, the header may give lengths in m, cm, mm or in and the twist in
+deg or rad; a file without ``radius``/``hub_radius`` lines gets them by
+extending the first and last station half a spacing outwards (exact for
+stations at the midpoints of equal annuli).
+"""
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, FileMetadata,
+                                  as_geometry, design_point_key, format_number, split_key)
+
+
+def write_csv(path, geometry):
+    """Write a geometry as CSV (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or path
+    geometry : RotorGeometry, dict or single-design DesignResult
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    geometry = as_geometry(geometry)
+    path = Path(path)
+    lines = [f"# {FORMAT_NAME}, format {FORMAT_VERSION}",
+             f"# name: {geometry.name}",
+             f"# airfoil: {geometry.airfoil or ''}",
+             f"# num_blades: {geometry.num_blades}",
+             f"# loss_model: {geometry.loss_model}",
+             f"# radius [m]: {format_number(geometry.radius)}",
+             f"# hub_radius [m]: {format_number(geometry.hub_radius)}"]
+    lines += [f"# design_point.{design_point_key(key)}: {format_number(value)}"
+              for key, value in geometry.design_point.items()]
+    lines.append("r [m],chord [m],twist [deg]")
+    lines += [f"{format_number(r)},{format_number(c)},{format_number(t)}"
+              for r, c, t in zip(geometry.radii, geometry.chord, geometry.twist_deg)]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def _column_scale(header):
+    names = {}
+    for column, text in enumerate(header):
+        key, units = split_key(text)
+        table = ANGLE_UNITS if key in ("twist", "beta") else LENGTH_UNITS
+        if units not in table:
+            raise ValueError(f"column {text!r}: unknown units {units!r}; use one of {', '.join(table)}")
+        names["twist" if key == "beta" else key] = (column, table[units])
+    missing = {"r", "chord", "twist"} - set(names)
+    if missing:
+        raise ValueError(f"CSV header lacks column(s) {sorted(missing)}; expected 'r [m],chord [m],twist [deg]'")
+    return names
+
+
+def _extend_ends(radii):
+    """Hub and tip radius by extending the end stations half a spacing outwards."""
+    hub = max(radii[0] - 0.5 * (radii[1] - radii[0]), 0.0)
+    tip = radii[-1] + 0.5 * (radii[-1] - radii[-2])
+    return hub, tip
+
+
+def read_csv(path):
+    """Read a geometry CSV (see the module docstring).
+
+    Returns
+    -------
+    RotorGeometry
+
+    Raises
+    ------
+    ValueError
+        If the file is not a readable geometry table (the message says why).
+    """
+    path = Path(path)
+    meta, rows, header = FileMetadata(path), [], None
+    with path.open(encoding="utf-8", newline="") as handle:
+        for line_no, line in enumerate(handle, start=1):
+            text = line.strip()
+            if not text:
+                continue
+            if text.startswith("#"):
+                key_text, colon, value = text.lstrip("#").strip().partition(":")
+                try:
+                    split_key(key_text)
+                except ValueError:
+                    continue  # a free-text comment, not metadata
+                if colon:
+                    meta.add(key_text, value)
+                continue
+            cells = next(csv.reader([text]))
+            if header is None:
+                header = _column_scale(cells)
+                continue
+            try:
+                rows.append([float(cells[header[k][0]]) * header[k][1] for k in ("r", "chord", "twist")])
+            except (ValueError, IndexError):
+                raise ValueError(f"{path}:{line_no}: expected numbers in every column, got {text!r}") from None
+    if header is None or not rows:
+        raise ValueError(f"{path}: no geometry table found (need a header 'r [m],chord [m],twist [deg]' and rows)")
+    data = np.array(rows)
+    radii = data[:, 0]
+    hub, tip = _extend_ends(radii) if radii.size > 1 else (0.0, radii[-1])
+    if "num_blades" not in meta:
+        raise ValueError(f"{path}: the number of blades is missing (a line '# num_blades: 3')")
+    return meta.geometry(radii, data[:, 1], data[:, 2], radius=meta.length("radius", tip),
+                         hub_radius=meta.length("hub_radius", hub), num_blades=int(meta.text("num_blades")),
+                         name=meta.text("name", path.stem))

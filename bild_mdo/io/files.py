@@ -1,0 +1,73 @@
+"""Read and write a blade geometry file in the format its name says (:func:`read_geometry`, :func:`write_geometry`).
+
+``.csv`` is :mod:`bild_mdo.io.csv`, ``.json`` is :mod:`bild_mdo.io.json`, any
+other name is a QPROP propeller file (:mod:`bild_mdo.io.qprop`).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+from bild_mdo.io.csv import read_csv, write_csv
+from bild_mdo.io.json import read_json, write_json
+from bild_mdo.io.qprop import read_qprop, write_qprop
+
+FORMATS = ("csv", "json", "qprop")
+_SUFFIXES = {".csv": "csv", ".json": "json"}
+
+
+def _format_of(path, fmt):
+    if fmt is None:
+        return _SUFFIXES.get(Path(path).suffix.lower(), "qprop")
+    if fmt not in FORMATS:
+        raise ValueError(f"unknown geometry format {fmt!r}; use one of {', '.join(FORMATS)}")
+    return fmt
+
+
+def write_geometry(path, geometry, fmt=None, **kwargs):
+    """Write a geometry; the format comes from ``fmt`` or the suffix (.csv, .json, anything else QPROP).
+
+    Parameters
+    ----------
+    path : str or path
+    geometry : RotorGeometry, dict or single-design DesignResult
+    fmt : {'csv', 'json', 'qprop'}, optional
+    **kwargs
+        Passed to the writer (:func:`~bild_mdo.io.qprop.write_qprop` takes ``polar`` and ``reynolds``).
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    writer = {"csv": write_csv, "json": write_json, "qprop": write_qprop}[_format_of(path, fmt)]
+    return writer(path, geometry, **kwargs)
+
+
+def read_geometry(path, fmt=None, design=0):
+    """Read a geometry file written by bild-mdo (or any QPROP propeller file).
+
+    Parameters
+    ----------
+    path : str or path
+    fmt : {'csv', 'json', 'qprop'}, optional
+        Default: from the suffix (``.csv``, ``.json``, anything else QPROP).
+    design : int
+        Design of a multi-design JSON file.
+
+    Returns
+    -------
+    RotorGeometry
+
+    Raises
+    ------
+    FileNotFoundError
+        If the file does not exist.
+    ValueError
+        If it cannot be read as a geometry.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"geometry file not found: {path}")
+    kind = _format_of(path, fmt)
+    if kind == "json":
+        return read_json(path, design=design)
+    return read_csv(path) if kind == "csv" else read_qprop(path)

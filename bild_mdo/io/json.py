@@ -1,0 +1,122 @@
+"""Blade geometries as JSON (``.json``): one file, one or more designs.
+
+One object with ``"format": "bild-mdo rotor geometry"``, ``"version": 1`` and a
+list ``"designs"`` of objects with the keys ``"name"``, ``"airfoil"``,
+``"num_blades"``, ``"loss_model"``, ``"radius [m]"``, ``"hub_radius [m]"``,
+``"r [m]"``, ``"chord [m]"``, ``"twist [deg]"`` (lists) and
+``"design_point"`` (``{"v_axial [m/s]": ..., "rpm [rpm]": ...}``).  Other keys
+(:meth:`~bild_mdo.results.design.DesignResult.to_json` adds ``"performance"``
+and ``"distributions"``) are ignored by the reader.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, RotorGeometry,
+                                  as_geometry, design_point_key, format_number, split_key, unit_key)
+
+
+def _geometry_entry(geometry):
+    return {
+        "name": geometry.name,
+        "airfoil": geometry.airfoil,
+        "num_blades": geometry.num_blades,
+        "loss_model": geometry.loss_model,
+        unit_key("radius", "m"): geometry.radius,
+        unit_key("hub_radius", "m"): geometry.hub_radius,
+        unit_key("r", "m"): geometry.radii.tolist(),
+        unit_key("chord", "m"): geometry.chord.tolist(),
+        unit_key("twist", "deg"): geometry.twist_deg.tolist(),
+        "design_point": {design_point_key(k): v for k, v in geometry.design_point.items()},
+    }
+
+
+def _round_floats(obj):
+    if isinstance(obj, (float, np.floating)):
+        return float(format_number(obj))
+    if isinstance(obj, dict):
+        return {k: _round_floats(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_round_floats(v) for v in obj]
+    if isinstance(obj, np.integer):
+        return int(obj)
+    return obj
+
+
+def write_json(path, geometries, extras=None):
+    """Write one or more geometries to a JSON file (see the module docstring).
+
+    Parameters
+    ----------
+    path : str or path
+    geometries : RotorGeometry, dict, single-design DesignResult, or a list of them
+    extras : list of dict, optional
+        Additional keys merged into each design's entry.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    if not isinstance(geometries, (list, tuple)):
+        geometries = [geometries]
+    entries = [_geometry_entry(as_geometry(g)) for g in geometries]
+    for entry, extra in zip(entries, extras or []):
+        entry.update(extra)
+    doc = {"format": FORMAT_NAME, "version": FORMAT_VERSION,
+           "units": {"r": "m", "chord": "m", "twist": "deg", "radius": "m", "hub_radius": "m"},
+           "designs": entries}
+    path = Path(path)
+    path.write_text(json.dumps(_round_floats(doc), indent=1) + "\n", encoding="utf-8")
+    return path
+
+
+def _lookup(entry, name, default_units, path):
+    """Value of ``name [units]`` in a JSON entry, converted to SI (lengths) or rad (angles)."""
+    for key, value in entry.items():
+        try:
+            base, units = split_key(key)
+        except ValueError:
+            continue
+        if base != name:
+            continue
+        table = ANGLE_UNITS if name == "twist" else LENGTH_UNITS
+        if units not in table:
+            raise ValueError(f"{path}: {key!r} has unknown units; use one of {', '.join(table)}")
+        return np.asarray(value, dtype=float) * table[units]
+    raise ValueError(f"{path}: design entry lacks '{name} [{default_units}]'")
+
+
+def _load(path):
+    try:
+        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+    except json.JSONDecodeError as err:
+        raise ValueError(f"{path}: not valid JSON ({err})") from None
+    if not isinstance(doc, dict) or doc.get("format") != FORMAT_NAME or "designs" not in doc:
+        raise ValueError(f"{path}: not a {FORMAT_NAME!r} JSON file")
+    return doc
+
+
+def read_json(path, design=0):
+    """Read design ``design`` of a geometry JSON file.
+
+    Returns
+    -------
+    RotorGeometry
+    """
+    path = Path(path)
+    designs = _load(path)["designs"]
+    if not -len(designs) <= design < len(designs):
+        raise ValueError(f"{path}: holds {len(designs)} design(s); design {design} does not exist")
+    entry = designs[design]
+    point = {split_key(key)[0]: value for key, value in (entry.get("design_point") or {}).items()}
+    return RotorGeometry(radii=_lookup(entry, "r", "m", path), chord=_lookup(entry, "chord", "m", path),
+                         twist=_lookup(entry, "twist", "deg", path),
+                         radius=float(_lookup(entry, "radius", "m", path)),
+                         hub_radius=float(_lookup(entry, "hub_radius", "m", path)),
+                         num_blades=entry["num_blades"], airfoil=entry.get("airfoil"),
+                         loss_model=entry.get("loss_model", "tip_hub"), design_point=point,
+                         name=entry.get("name", path.stem))
+

@@ -1,0 +1,87 @@
+"""analyze_rotor: single case vs batch, result object, and input validation."""
+import numpy as np
+import pytest
+
+from bild_mdo.bem import BEMResult, analyze_rotor, station_radii
+
+NR = 12
+
+
+@pytest.fixture(scope="module")
+def case():
+    radius, hub = 1.0, 0.15
+    r = station_radii(radius, hub, NR)
+    chord = 0.12 - 0.07 * (r - hub) / (radius - hub)
+    twist = np.arctan(0.15 / r)  # constant-pitch blade, pitch 2 pi 0.15 m (hand choice)
+    return dict(chord=chord, twist=twist, radius=radius, hub_radius=hub, rpm=2200.0, v_axial=20.0,
+                num_blades=3)
+
+
+def test_single_case_shapes_and_units(case, analytic_polar):
+    res = analyze_rotor(polar=analytic_polar, **case)
+    assert isinstance(res, BEMResult)
+    assert np.shape(res.thrust) == () and res.phi.shape == (NR,)
+    d = res.to_dict()
+    assert set(d) == set(BEMResult.UNITS)
+    assert BEMResult.UNITS["thrust"] == "N" and BEMResult.UNITS["dtorque_dr"] == "N*m/m"
+    assert np.max(np.abs(res.residual)) < 1e-12
+    # Positive-thrust propeller: 0 < eta < 1 (momentum theory bound).
+    assert res.thrust > 0 and 0 < res.efficiency < 1
+    # Sea-level ISA density (altitude defaults to 0).
+    assert res.rho == pytest.approx(1.225, abs=1e-6)
+    # The section coefficients are the polar's at the solved angle of attack and Reynolds number.
+    polar_values = analytic_polar.evaluate(res.alpha, res.reynolds)
+    np.testing.assert_allclose(res.lift_coefficient, polar_values.cl, rtol=1e-14)
+    np.testing.assert_allclose(res.drag_coefficient, polar_values.cd, rtol=1e-14)
+
+
+def test_batch_matches_single_cases(case, analytic_polar):
+    v = np.array([0.0, 10.0, 20.0, 35.0])
+    batch = analyze_rotor(polar=analytic_polar, **{**case, "v_axial": v})
+    assert batch.thrust.shape == (4,) and batch.phi.shape == (4, NR)
+    for i, vi in enumerate(v):
+        single = analyze_rotor(polar=analytic_polar, **{**case, "v_axial": vi})
+        assert single.thrust == pytest.approx(batch.thrust[i], rel=1e-13)
+        assert single.torque == pytest.approx(batch.torque[i], rel=1e-13)
+    # Same rotor, same rpm: thrust falls as the advance ratio rises (propeller physics).
+    assert np.all(np.diff(batch.thrust) < 0)
+
+
+def test_given_radii_without_widths_use_cell_widths(case, analytic_polar):
+    r = station_radii(case["radius"], case["hub_radius"], NR)
+    res = analyze_rotor(polar=analytic_polar, radii=r, **case)
+    default = analyze_rotor(polar=analytic_polar, **case)
+    # Midpoint stations: the cells between neighbouring midpoints are the equal annuli (hand).
+    np.testing.assert_allclose(res.dr, default.dr, rtol=1e-12)
+    assert res.thrust == pytest.approx(default.thrust, rel=1e-12)
+
+
+def test_rho_mu_override(case, analytic_polar):
+    res = analyze_rotor(polar=analytic_polar, rho=1.0, mu=1.5e-5, **case)
+    assert res.rho == 1.0 and res.mu == 1.5e-5
+
+
+@pytest.mark.parametrize("change, match", [
+    (dict(radius=-1.0), "radius"),
+    (dict(radius=0.1), "hub_radius must be smaller"),
+    (dict(hub_radius=0.0), "hub_radius must be positive"),
+    (dict(rpm=0.0), "rpm"),
+    (dict(v_axial=-5.0), "v_axial"),
+    (dict(chord=-np.ones(NR)), "chord"),
+    (dict(twist=np.zeros(NR + 1)), "twist"),
+    (dict(v_axial=np.zeros(3), rpm=np.ones(2) * 1000.0), "batch sizes disagree"),
+    (dict(chord=np.full(NR, np.nan)), "chord must be a positive finite number"),
+    (dict(num_blades=0), "num_blades"),
+    (dict(altitude=20000.0), "altitude"),
+    (dict(loss_model="glauert"), "loss_model"),
+    (dict(radii=np.linspace(0.05, 0.9, NR)), "radii must be within"),
+    (dict(dr=np.full(NR, 0.05)), "dr needs radii"),
+])
+def test_invalid_input_raises_value_error_naming_argument(case, analytic_polar, change, match):
+    with pytest.raises(ValueError, match=match):
+        analyze_rotor(polar=analytic_polar, **{**case, **change})
+
+
+def test_polar_must_be_a_polar(case):
+    with pytest.raises(ValueError, match="polar"):
+        analyze_rotor(polar="naca4412", **case)

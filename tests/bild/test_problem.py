@@ -1,0 +1,35 @@
+"""bild_problem: the set-up BILD model, cached by configuration."""
+import numpy as np
+import pytest
+
+from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.bild.problem import bild_problem, clear_model_cache
+
+
+def test_same_configuration_reuses_the_problem():
+    clear_model_cache()
+    first = bild_problem(num_nodes=2, num_radial=6)
+    # Built-in names are case-insensitive and resolve to one polar object, so the cache is hit.
+    assert bild_problem(num_nodes=2, num_radial=6, airfoil=" NACA4412") is first
+    assert bild_problem(num_nodes=2, num_radial=7) is not first
+    clear_model_cache()
+    assert bild_problem(num_nodes=2, num_radial=6) is not first
+
+
+def test_problem_runs_with_a_polar_object():
+    prob = bild_problem(num_nodes=1, num_radial=8, airfoil=AnalyticPolar())
+    prob.set_val("v_axial", 10.0)
+    prob.run_model()
+    # Thrust is positive for a loaded forward-flight design (paper Assumption 3).
+    assert np.all(prob.get_val("thrust") > 0.0)
+
+
+@pytest.mark.parametrize("change, match", [
+    (dict(airfoil="clarky"), "unknown airfoil"),
+    (dict(airfoil=3), "airfoil must be"),
+    (dict(num_nodes=0), "num_nodes must be an integer"),
+    (dict(num_radial=True), "num_radial must be an integer"),
+])
+def test_invalid_arguments(change, match):
+    with pytest.raises(ValueError, match=match):
+        bild_problem(**change)

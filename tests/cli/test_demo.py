@@ -1,0 +1,11 @@
+"""bild-mdo demo: the paper's rotor, its tables, geometry files and figures."""
+from tests.cli.runner import run
+
+
+def test_demo_writes_tables_and_files(tmp_path, capsys):
+    code, out, err = run(capsys, "demo", "--output-dir", str(tmp_path / "demo"))
+    assert code == 0, err
+    assert "stations:" in out and "maximum efficiency" in out
+    for name in ("hover_blade.csv", "hover_blade.json", "hover_blade.prop", "hover_blade.png", "blades_J0-2.png",
+                 "efficiency_Jdes1.png"):
+        assert (tmp_path / "demo" / name).stat().st_size > 0

@@ -1,0 +1,41 @@
+"""bild-mdo design: the paper's rotor printed and written to every file format, batches."""
+import numpy as np
+import pytest
+
+from bild_mdo.io.files import read_geometry
+from bild_mdo.results.design import design_rotor
+from tests.cli.runner import run
+from tests.io import FILE_RTOL
+
+
+def test_design_defaults_print_table_and_write_files(tmp_path, capsys):
+    files = {ext: tmp_path / f"blade.{ext}" for ext in ("csv", "json", "prop", "png")}
+    code, out, err = run(capsys, "design", "--csv", str(files["csv"]), "--json", str(files["json"]),
+                          "--qprop", str(files["prop"]), "--plot", str(files["png"]))
+    assert code == 0, err
+    # The paper's rotor: R = 1.5 m, B = 3, 800 rpm, NACA 4412, c_ref = 0.15 m, hover, 30 stations.
+    reference = design_rotor()
+    assert "airfoil naca4412, B = 3, 30 stations" in out
+    lines = out.splitlines()
+    header = lines.index("stations:") + 1
+    assert lines[header].split()[:4] == ["r", "[m]", "r/R", "[-]"]
+    rows = [line.split() for line in lines[header + 1:header + 31]]
+    np.testing.assert_allclose([float(r[0]) for r in rows], reference.radii, atol=5e-5)
+    np.testing.assert_allclose([float(r[2]) for r in rows], reference.chord, atol=5e-6)
+    np.testing.assert_allclose([float(r[3]) for r in rows], reference.twist_deg, atol=5e-4)
+    thrust_line = next(line for line in lines if line.strip().startswith("thrust T"))
+    assert thrust_line.split()[-1] == "N"
+    assert float(thrust_line.split()[-2]) == pytest.approx(reference.thrust, rel=1e-5)
+    for path in files.values():
+        assert path.stat().st_size > 0
+        assert f"wrote {path}" in out
+    geometry = read_geometry(files["csv"])
+    np.testing.assert_allclose(geometry.chord, reference.chord, rtol=FILE_RTOL)
+
+
+def test_design_batch(tmp_path, capsys):
+    code, out, _ = run(capsys, "design", "--airfoil", "analytic", "--num-radial", "8", "--ref-chord", "0.1", "0.2",
+                        "--csv", str(tmp_path / "b.csv"))
+    assert code == 0
+    assert "2 designs" in out
+    assert (tmp_path / "b_0.csv").is_file() and (tmp_path / "b_1.csv").is_file()

@@ -1,0 +1,84 @@
+"""``bild-mdo verify``: options, the printed Table 3 reproduction, figures, and the paper's sweep at three levels."""
+import argparse
+import io
+import re
+import time
+
+import pytest
+
+from bild_mdo.cli.verify import add_verify_arguments, run_verify
+from bild_mdo.verification.cases import SweepSpec
+from bild_mdo.verification.statistics import table3
+from bild_mdo.verification.store import ResultsStore, StoreError
+from tests.verification import standins
+
+# Mean relative errors of BILD against the BEM optimum that the three-level sweep must meet; the paper's
+# Table 3 (Ruh & Hwang 2023) reports 0.161, 0.161, 0.156 and 0.288 % for C_Q, C_P, eta and FM and 11.966 % for E.
+MAX_ERROR_PCT = {
+    "torque_coefficient": 0.3,
+    "power_coefficient": 0.3,
+    "efficiency": 0.3,
+    "figure_of_merit": 0.3,
+    "energy_loss": 3.0,
+}
+
+
+def _args(argv):
+    return add_verify_arguments(argparse.ArgumentParser(prog="bild-mdo verify")).parse_args(argv)
+
+
+def test_options_and_defaults():
+    args = _args([])
+    assert (args.levels, args.optimizer, args.db, args.figures, args.no_progress) == (10, "slsqp", None, None, False)
+    with pytest.raises(SystemExit):
+        _args(["--optimizer", "cobyla"])
+
+
+def test_prints_table3_and_writes_figures(tmp_path):
+    pytest.importorskip("matplotlib")
+    args = _args(["--levels", "2", "--workers", "1", "--db", str(tmp_path / "v.sqlite"),
+                  "--figures", str(tmp_path / "figs"), "--no-progress", "--optimizer", "ipopt"])
+    out = io.StringIO()
+    assert run_verify(args, out, standins.bild_batch, standins.optimize) == 0
+    text = out.getvalue()
+    assert text.startswith(f"Sweep of 16 cases in {tmp_path / 'v.sqlite'}: 0 resumed, 16 computed in ")
+    assert "Table 3 reproduction: 16 cases, 12 with both methods converged" in text
+    # The paper's Table 3 column is printed beside ours.
+    for paper_value in ("6.337e-10", "11.966", "12.406", "86.810", "2.130"):
+        assert paper_value in text
+    assert (tmp_path / "figs" / "fig4_run_time.png").stat().st_size > 10_000
+    assert (tmp_path / "figs" / "fig5_parity.png").stat().st_size > 10_000
+    # The optimiser choice is part of the sweep: the same file refuses another optimiser.
+    args.optimizer = "slsqp"
+    with pytest.raises(StoreError, match="different sweep"):
+        run_verify(args, out, standins.bild_batch, standins.optimize)
+
+
+@pytest.mark.slow
+def test_verify_levels3_end_to_end(tmp_path):
+    # 3^4 cases of the paper's Sec. 5.1 sweep, real BILD and SLSQP optimisations on two workers (about a minute).
+    db, figures = tmp_path / "x.sqlite", tmp_path / "figs"
+    args = _args(["--levels", "3", "--workers", "2", "--optimizer", "slsqp", "--db", str(db),
+                  "--figures", str(figures), "--no-progress"])
+    out = io.StringIO()
+    start = time.perf_counter()
+    assert run_verify(args, out) == 0
+    print(f"verify --levels 3 took {time.perf_counter() - start:.1f} s")
+    text = out.getvalue()
+
+    assert "Table 3 reproduction: 81 cases, 81 with both methods converged" in text
+    assert re.search(r"^Percent converged\s+100\.000\s+100\.000\s", text, re.MULTILINE)
+    for name in ("fig4_run_time.png", "fig5_parity.png"):
+        assert (figures / name).stat().st_size > 10_000
+    # The optimum is an optimum: none is lossier than BILD's geometry trimmed to the same thrust (+0.01 %).
+    assert "Optimum is an optimum: 0 of 81 cases have E_opt > E_BILD,trimmed (1 + 0.0001)" in text
+
+    with ResultsStore(db, SweepSpec(levels=3, optimizer="slsqp")) as store:
+        rows = store.rows()
+    table = table3(rows)
+    assert (table.num_cases, table.num_converged) == (81, 81)
+    assert table.percent_converged_bild == table.percent_converged_opt == 100.0
+    for key, limit in MAX_ERROR_PCT.items():
+        assert table.quantities[key].mean_relative_error_pct <= limit, key
+    # Same thrust by construction: the optimisation's equality constraint is T = T_BILD (|T/T* - 1| <= 1e-6).
+    assert table.quantities["thrust_coefficient"].mean_relative_error_pct < 1e-4

@@ -1,0 +1,85 @@
+"""QPROP propeller files: foreign files read with QPROP's meaning, hub and tip rows, the airfoil-model fit."""
+import numpy as np
+import pytest
+
+from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.io.qprop import polar_from_qprop, qprop_airfoil_coefficients, read_qprop, write_qprop
+from tests.io import FILE_RTOL
+
+FOREIGN_QPROP = """\
+Test prop 10x5 (inches)
+
+ 2              ! Nblades  [ R ]
+
+ 0.50  5.8      ! CL0     CL_a
+ -0.3  1.2      ! CLmin   CLmax
+
+ 0.028  0.050  0.020  0.5   !  CD0    CD2u   CD2l   CLCD0
+ 70000   -0.7               !  REref  REexp
+
+ 0.0254  0.0254   1.0  !  Rfac   Cfac   Bfac
+ 0.      0.       2.0  !  Radd   Cadd   Badd
+
+#  r    chord    beta
+ 1.0   1.0    30.0
+ 3.0   0.9    20.0
+ 5.0   0.6    15.0   0.5 5.8 -0.3 1.2 0.028 0.05 0.02 0.5 70000 -0.7
+"""
+
+
+def test_foreign_qprop_file(tmp_path):
+    path = tmp_path / "prop10x5.txt"
+    path.write_text(FOREIGN_QPROP)
+    geometry = read_qprop(path)
+    # QPROP source: r = r_file*Rfac + Radd, c = c_file*Cfac + Cadd, beta = beta_file*Bfac + Badd; without R
+    # on the Nblades line the tip is the last station, and the blade starts at the first station.
+    np.testing.assert_allclose(geometry.radii, np.array([1.0, 3.0, 5.0]) * 0.0254)
+    np.testing.assert_allclose(geometry.chord, np.array([1.0, 0.9, 0.6]) * 0.0254)
+    np.testing.assert_allclose(geometry.twist_deg, [32.0, 22.0, 17.0])
+    assert geometry.radius == pytest.approx(5.0 * 0.0254)
+    assert geometry.hub_radius == pytest.approx(1.0 * 0.0254)
+    assert geometry.num_blades == 2 and geometry.airfoil is None
+    coeffs = geometry.polar_coefficients
+    assert coeffs["CD2l"] == 0.020 and coeffs["REref"] == 70000.0 and coeffs["REexp"] == -0.7
+    polar = polar_from_qprop(coeffs)
+    # At alpha = 0 and Re = REref the model gives cl = CL0, cd = CD0 + CD2u (CL0 - CLCD0)^2 (hand evaluation).
+    values = polar.evaluate(0.0, 70000.0)
+    assert float(values.cl) == pytest.approx(0.5)
+    assert float(values.cd) == pytest.approx(0.028 + 0.050 * 0.0**2)
+
+
+def test_qprop_file_spans_hub_to_tip(tmp_path, design):
+    # QPROP integrates from the first to the last row, so the file carries rows at the hub and tip radius
+    # (linear extrapolation) around the BILD stations; R on the Nblades line is the tip radius.
+    path = write_qprop(tmp_path / "blade.prop", design)
+    rows = [line.split() for line in path.read_text().splitlines()
+            if line.strip() and not line.lstrip().startswith("#")][8:]
+    radii = np.array([float(row[0]) for row in rows])
+    chords = np.array([float(row[1]) for row in rows])
+    assert radii[0] == pytest.approx(design.hub_radius) and radii[-1] == pytest.approx(design.radius)
+    np.testing.assert_allclose(radii[1:-1], design.radii, rtol=FILE_RTOL)
+    assert np.all(chords > 0.0)
+    r, c = design.radii, design.chord
+    assert chords[-1] == pytest.approx(max(c[-1] + (c[-1] - c[-2]) / (r[-1] - r[-2]) * (1.5 - r[-1]),
+                                           0.5 * c[-1]), rel=FILE_RTOL)
+
+
+def test_qprop_airfoil_fit_of_the_analytic_polar():
+    # The analytic polar's attached flow IS QPROP's model: cl = 0.4 + 0.9*2*pi*alpha,
+    # cd = 0.008 + 0.01 (cl - 0.4)^2 (AnalyticPolar defaults), so the fit must return those numbers.
+    coeffs = qprop_airfoil_coefficients(AnalyticPolar(), 5e5)
+    assert coeffs["CL0"] == pytest.approx(0.4, abs=1e-12)
+    assert coeffs["CL_a"] == pytest.approx(0.9 * 2.0 * np.pi, rel=1e-12)
+    assert coeffs["CD0"] == pytest.approx(0.008, rel=1e-9)
+    assert coeffs["CLCD0"] == pytest.approx(0.4, abs=1e-6)
+    assert coeffs["CD2u"] == pytest.approx(0.01, rel=1e-6)
+    assert coeffs["CD2l"] == pytest.approx(0.01, rel=1e-6)
+    assert coeffs["REexp"] == pytest.approx(0.0, abs=1e-12)
+    assert coeffs["CLmin"] < 0.0 < coeffs["CLCD0"] < coeffs["CLmax"]
+
+
+
+def test_too_short_file(tmp_path):
+    (tmp_path / "short.prop").write_text("name\n 2 ! Nblades\n")
+    with pytest.raises(ValueError, match="too short"):
+        read_qprop(tmp_path / "short.prop")

@@ -1,0 +1,138 @@
+"""Off-design BEM sweeps of BILD blades: design-point consistency, invariants, vectorisation, errors."""
+import numpy as np
+import pytest
+
+import bild_mdo.results.off_design as off_design_module
+from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.bem.metrics import METRICS
+from bild_mdo.results.design import design_rotor
+from bild_mdo.results.off_design import OffDesignResult, off_design_sweep
+
+FAST = dict(airfoil="analytic", num_radial=16)
+
+
+@pytest.mark.parametrize("advance_ratio", [0.4, 1.0, 2.0])
+def test_design_point_reproduces_bild_with_reynolds_independent_polar(advance_ratio):
+    # With a polar that does not depend on Re every element of the BILD blade works at alpha*, and
+    # Eq. (25) zeroes the BEM residual at BILD's inflow angle: BEM must return BILD's T and Q
+    # (measured ~1e-14 relative).
+    rotor = design_rotor(advance_ratio=advance_ratio, **FAST)
+    sweep = off_design_sweep(rotor, advance_ratios=[0.5 * advance_ratio, advance_ratio, 1.5 * advance_ratio])
+    assert sweep.thrust[1] == pytest.approx(rotor.thrust, rel=1e-6)
+    assert sweep.torque[1] == pytest.approx(rotor.torque, rel=1e-6)
+    assert sweep.efficiency[1] == pytest.approx(rotor.efficiency, rel=1e-6)
+
+
+def test_hover_design_point_reproduces_bild():
+    rotor = design_rotor(**FAST)
+    sweep = off_design_sweep(rotor, rpms=[600.0, 800.0, 1000.0])
+    assert sweep.thrust[1] == pytest.approx(rotor.thrust, rel=1e-6)
+    assert sweep.torque[1] == pytest.approx(rotor.torque, rel=1e-6)
+    assert sweep.figure_of_merit[1] == pytest.approx(rotor.figure_of_merit, rel=1e-6)
+
+
+@pytest.mark.parametrize("advance_ratio", [0.0, 0.5, 1.0, 2.0])
+def test_design_point_with_naca4412(advance_ratio):
+    # BILD takes alpha*, cl*, cd* at the reference Reynolds number for every station; BEM uses each
+    # station's own Reynolds number, so T and Q differ by the polar's Re-dependence over the span.
+    # Measured with 30 stations: |dT/T| = 7.3e-4, 1.24e-3, 1.28e-3, 9.4e-5 and |dQ/Q| = 9.0e-4, 1.0e-5,
+    # 5.1e-4, 3.0e-4 for J = 0, 0.5, 1, 2.
+    rotor = design_rotor(advance_ratio=advance_ratio, airfoil="naca4412", num_radial=30)
+    if advance_ratio == 0.0:
+        sweep = off_design_sweep(rotor, rpms=[rotor.rpm])
+    else:
+        sweep = off_design_sweep(rotor, advance_ratios=[advance_ratio])
+    assert abs(sweep.thrust[0] / rotor.thrust - 1.0) < 2e-3
+    assert abs(sweep.torque[0] / rotor.torque - 1.0) < 1.5e-3
+
+
+def test_hover_coefficients_do_not_depend_on_rpm():
+    # Dimensional analysis: in hover with a Re-independent polar and fixed density the flow scales with
+    # Omega, so C_T, C_Q, C_P and FM are the same at every rotor speed.
+    sweep = off_design_sweep(design_rotor(**FAST), rpms=np.linspace(300.0, 1500.0, 5))
+    for name in ("thrust_coefficient", "torque_coefficient", "power_coefficient", "figure_of_merit"):
+        values = getattr(sweep, name)
+        np.testing.assert_allclose(values, values[0], rtol=1e-9)
+    # T ~ Omega^2 at fixed C_T.
+    np.testing.assert_allclose(sweep.thrust / sweep.rpm**2, sweep.thrust[0] / sweep.rpm[0] ** 2, rtol=1e-9)
+
+
+def test_one_vectorised_analysis(monkeypatch):
+    calls = []
+    original = off_design_module.analyze_rotor
+
+    def counting(*args, **kwargs):
+        calls.append(np.size(args[4]))
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(off_design_module, "analyze_rotor", counting)
+    sweep = off_design_sweep(design_rotor(advance_ratio=1.0, **FAST), advance_ratios=np.linspace(0.2, 1.8, 17))
+    assert calls == [17]
+    assert len(sweep) == 17 and sweep.bem.phi.shape == (17, 16)
+
+
+def test_maximum_efficiency_point():
+    # Paper Sec. 5.2.4 / Fig. 9: the best efficiency of a BILD blade is at least that at its design point.
+    rotor = design_rotor(advance_ratio=1.0, **FAST)
+    j = np.linspace(0.1, 2.5, 25)
+    sweep = off_design_sweep(rotor, advance_ratios=j)
+    best = sweep.max_efficiency_point
+    useful = (sweep.thrust > 0) & (sweep.power > 0)
+    assert best["efficiency"] == pytest.approx(np.max(sweep.efficiency[useful]))
+    assert best["efficiency"] >= rotor.efficiency
+    # J = V/(nD) of every point (Table 2).
+    np.testing.assert_allclose(sweep.v_axial, j * 800.0 / 60.0 * 3.0, rtol=1e-14)
+    assert "maximum efficiency" in sweep.summary()
+    hover = off_design_sweep(design_rotor(**FAST), rpms=[700.0, 800.0])
+    assert hover.max_efficiency_point is None
+
+
+def test_geometry_sources_agree(tmp_path):
+    rotor = design_rotor(advance_ratio=0.8, **FAST)
+    path = rotor.to_csv(tmp_path / "blade.csv")[0]
+    from_result = off_design_sweep(rotor, advance_ratios=[0.6, 0.8])
+    from_file = off_design_sweep(path, advance_ratios=[0.6, 0.8])
+    from_arrays = off_design_sweep(dict(radii=rotor.radii, chord=rotor.chord, twist=rotor.twist, radius=1.5,
+                                        hub_radius=0.3, num_blades=3), advance_ratios=[0.6, 0.8], rpm=800.0,
+                                   polar=AnalyticPolar())
+    # The file carries 12 significant digits.
+    np.testing.assert_allclose(from_file.thrust, from_result.thrust, rtol=1e-9)
+    np.testing.assert_allclose(from_arrays.thrust, from_result.thrust, rtol=1e-12)
+    out = from_file.to_csv(tmp_path / "perf.csv").read_text().splitlines()
+    assert out[1].startswith("advance_ratio [-],v_axial [m/s],rpm [rpm],thrust [N]")
+    assert len(out) == 4
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(), "exactly one"),
+    (dict(advance_ratios=[1.0], rpms=[800.0]), "exactly one"),
+    (dict(advance_ratios=[-0.5]), r"advance_ratios must be a finite number >= 0, got -0.5 \(point 0\)"),
+    (dict(rpms=[900.0, 0.0]), r"rpms must be a positive finite number in rpm, got 0 \(point 1\)"),
+    (dict(advance_ratios=[]), "non-empty"),
+    (dict(advance_ratios=[0.5], rpm=-1.0), "rpm must be a positive finite number in rpm, got -1"),
+    (dict(advance_ratios=["0.5"]), r"advance_ratios must be a finite number >= 0, got \['0.5'\]"),
+    (dict(rpms=[800.0], v_axial=True), "v_axial must be a finite number >= 0 in m/s, got True"),
+    (dict(advance_ratios=[0.5], polar="naca0012"), "unknown airfoil 'naca0012'"),
+])
+def test_invalid_sweeps(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        off_design_sweep(design_rotor(advance_ratio=0.5, **FAST), **kwargs)
+
+
+def test_batch_needs_a_design_index():
+    batch = design_rotor(advance_ratio=[0.5, 1.0], **FAST)
+    with pytest.raises(ValueError, match="choose one with design=i"):
+        off_design_sweep(batch, advance_ratios=[0.5])
+    sweep = off_design_sweep(batch, advance_ratios=[1.0], design=1)
+    assert sweep.thrust[0] == pytest.approx(batch.thrust[1], rel=1e-6)
+
+
+def test_every_registry_metric_is_a_sweep_quantity(tmp_path):
+    # The sweep follows the registry of per-design outputs (bild_mdo.bem.metrics.METRICS): every metric is an
+    # attribute equal to the BEM result's, and a column of the CSV file with its units.
+    sweep = off_design_sweep(design_rotor(advance_ratio=0.8, **FAST), advance_ratios=[0.6, 0.8])
+    header = sweep.to_csv(tmp_path / "perf.csv").read_text().splitlines()[1].split(",")
+    for metric in METRICS:
+        np.testing.assert_array_equal(getattr(sweep, metric.name), getattr(sweep.bem, metric.name))
+        assert OffDesignResult.UNITS[metric.name] == metric.units
+        assert f"{metric.name} [{metric.units or '-'}]" in header
