@@ -32,52 +32,36 @@ def station_radii(radius, hub_radius, num_radial):
     return hub_radius + (np.arange(num_radial) + 0.5) * (radius - hub_radius) / num_radial
 
 
-@dataclasses.dataclass(frozen=True)
-class BEMResult:
-    """Result of :func:`analyze_rotor`.
+#: Per-station quantities of the analysis besides the section outputs: name -> units.
+_STATE_UNITS = {"rho": "kg/m**3", "mu": "Pa*s", "radii": "m", "dr": "m", "phi": "rad"}
 
-    Per-design quantities have shape ``(nn,)`` for a batch and are 0-d arrays
-    for a single case; distributions have shape ``(nn, nr)`` or ``(nr,)``.
-    Units are listed in :attr:`UNITS` (SI; angles in rad; ``None`` = dimensionless).
-    """
 
-    thrust: np.ndarray
-    torque: np.ndarray
-    power: np.ndarray
-    efficiency: np.ndarray
-    figure_of_merit: np.ndarray
-    thrust_coefficient: np.ndarray
-    torque_coefficient: np.ndarray
-    power_coefficient: np.ndarray
-    energy_loss: np.ndarray
-    solidity: np.ndarray
-    blade_loading: np.ndarray
-    rho: np.ndarray
-    mu: np.ndarray
-    radii: np.ndarray
-    dr: np.ndarray
-    phi: np.ndarray
-    alpha: np.ndarray
-    reynolds: np.ndarray
-    lift_coefficient: np.ndarray
-    drag_coefficient: np.ndarray
-    u_axial: np.ndarray
-    u_theta: np.ndarray
-    loss_factor: np.ndarray
-    inflow_speed: np.ndarray
-    dthrust_dr: np.ndarray
-    dtorque_dr: np.ndarray
-    residual: np.ndarray
+def _to_dict(self):
+    """All fields as a dict of numpy arrays (units in :attr:`UNITS`)."""
+    return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
-    UNITS: ClassVar[dict] = {
+
+# The fields follow the output registries (bem.metrics.METRICS, bem.loads.SECTION_OUTPUTS), so a new
+# per-design metric appears here without an edit.
+BEMResult = dataclasses.make_dataclass(
+    "BEMResult",
+    [(name, np.ndarray) for name in (*PERFORMANCE_OUTPUTS, *_STATE_UNITS, *SECTION_OUTPUTS, "residual")]
+    + [("UNITS", ClassVar[dict], dataclasses.field(default={
         **{name: units for name, (units, _) in PERFORMANCE_OUTPUTS.items()},
+        **_STATE_UNITS,
         **{name: units for name, (units, _) in SECTION_OUTPUTS.items()},
-        "rho": "kg/m**3", "mu": "Pa*s", "radii": "m", "dr": "m", "phi": "rad", "residual": None,
-    }
+        "residual": None}))],
+    frozen=True,
+    namespace={"to_dict": _to_dict, "__module__": __name__},
+)
+BEMResult.__doc__ = """Result of :func:`analyze_rotor`.
 
-    def to_dict(self):
-        """All fields as a dict of numpy arrays (units in :attr:`UNITS`)."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+    Per-design quantities (every entry of :data:`bild_mdo.bem.metrics.METRICS`, plus ``rho`` and
+    ``mu``) have shape ``(nn,)`` for a batch and are 0-d arrays for a single case; distributions
+    (``radii``, ``dr``, ``phi``, the section outputs of :data:`bild_mdo.bem.loads.SECTION_OUTPUTS`
+    and the inflow ``residual``) have shape ``(nn, nr)`` or ``(nr,)``.  Units are listed in
+    :attr:`UNITS` (SI; angles in rad; ``None`` = dimensionless).
+    """
 
 
 def _axes(value):
