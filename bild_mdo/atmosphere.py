@@ -21,6 +21,7 @@ from typing import NamedTuple
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.utils.options import declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_node
 
 EARTH_RADIUS = 6356766.0          # m, r0 of the geopotential altitude
@@ -102,8 +103,6 @@ class AtmosphereComp(om.ExplicitComponent):
     -------
     num_nodes : int
         Number of designs / operating points.
-    num_radial : int
-        Number of radial stations (unused; declared for a uniform interface).
 
     Inputs
     ------
@@ -122,9 +121,7 @@ class AtmosphereComp(om.ExplicitComponent):
     """
 
     def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of designs / operating points (axis 0)")
-        self.options.declare("num_radial", types=int, default=1,
-                             desc="number of radial stations (unused; uniform interface)")
+        declare_size_options(self.options, radial=False)
 
     def setup(self):
         nn = self.options["num_nodes"]

@@ -2,9 +2,9 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_partials
 
 from bild_mdo.atmosphere import AtmosphereComp, isa
+from bild_mdo.utils.testing import check_component_partials
 
 
 def test_sea_level_matches_isa_table():
@@ -51,15 +51,9 @@ def test_out_of_range_altitude_raises(altitude):
 
 
 def test_component_partials_and_values():
-    nn = 3
-    prob = om.Problem(reports=False)
-    prob.model.add_subsystem("atm", AtmosphereComp(num_nodes=nn), promotes=["*"])
-    prob.setup(force_alloc_complex=True)
-    prob.set_val("altitude", [0.0, 3000.0, 9000.0])
-    prob.run_model()
+    prob = check_component_partials(AtmosphereComp(num_nodes=3), {"altitude": [0.0, 3000.0, 9000.0]},
+                                    atol=1e-12, rtol=1e-10)
     np.testing.assert_allclose(prob.get_val("rho")[:2], [1.2250, 0.9093], atol=1e-4)  # ISA table
-    data = prob.check_partials(method="cs", out_stream=None)
-    assert_check_partials(data, atol=1e-12, rtol=1e-10)
 
 
 @pytest.mark.parametrize("altitude", [-1.0, 12000.0, np.nan])
@@ -75,13 +69,6 @@ def test_component_rejects_out_of_range(altitude):
     assert not isinstance(info.value, ValueError)
 
 
-def test_component_takes_num_radial():
-    # Every component takes num_nodes and num_radial (uniform interface); the atmosphere is per node only.
-    prob = om.Problem(reports=False)
-    prob.model.add_subsystem("atm", AtmosphereComp(num_nodes=3, num_radial=7), promotes=["*"])
-    prob.setup(force_alloc_complex=True)
-    prob.set_val("altitude", [0.0, 3000.0, 9000.0])
-    prob.run_model()
-    assert prob.get_val("rho").shape == (3,)
-    np.testing.assert_allclose(prob.get_val("rho")[:2], [1.2250, 0.9093], atol=1e-4)  # ISA table
-    assert_check_partials(prob.check_partials(method="cs", out_stream=None), atol=1e-12, rtol=1e-10)
+def test_component_is_per_design():
+    # The atmosphere depends on the altitude of a design only: it has no radial size option.
+    assert "num_radial" not in AtmosphereComp().options

@@ -56,8 +56,8 @@ def test_case_id_layout_and_fixed_inputs():
 
 def test_fingerprint_identifies_the_sweep():
     base = SweepSpec(levels=10)
-    # Regression pin (value when the layout was written): a change of the case layout or the defaults
-    # must be noticed, since it orphans existing stores; bump CASE_LAYOUT_VERSION then.
+    # A pinned identifier, not a computed quantity: a change of the case layout or the defaults must be
+    # noticed, since it orphans existing stores; bump CASE_LAYOUT_VERSION then.
     assert base.fingerprint() == SweepSpec().fingerprint() == "a1c89e229d75513b"
     assert len({base.fingerprint(), SweepSpec(levels=9).fingerprint(), SweepSpec(optimizer="ipopt").fingerprint(),
                 SweepSpec(num_radial=20).fingerprint()}) == 4
