@@ -20,13 +20,19 @@ This module sits at the bottom of the package: it imports only NumPy.
 from __future__ import annotations
 
 import numbers
+import os
 
 import numpy as np
 
 __all__ = [
     "real_array", "check", "positive", "non_negative", "in_range", "smaller", "integer", "choice",
-    "batch_size",
+    "batch_size", "memory_bound", "format_bytes", "BYTES_PER_NODE_STATION",
 ]
+
+#: Peak memory of one design or operating point per radial station in a vectorised OpenMDAO run (bytes):
+#: measured as the growth of the peak resident set of a BEM sweep (10,000 points x 30 stations: 2.5 kB) and
+#: of a BILD batch (10,000 designs x 30 stations: 2.7 kB), rounded up.
+BYTES_PER_NODE_STATION = 3000
 
 _NOT_NUMBERS = (str, bytes, bool, np.bool_)
 
@@ -55,7 +61,7 @@ def _where(mask, axes):
     return " (" + ", ".join(f"{axis} {int(i)}" for axis, i in zip(axes, first)) + ")"
 
 
-def real_array(name, value, *, units=None, requirement="a finite number", hint=None, ndim=(0, 1)):
+def real_array(name, value, *, units=None, requirement="a finite number", hint=None, ndim=(0, 1), axes=None):
     """``value`` as a float array, after checking that it holds only finite real numbers.
 
     Parameters
@@ -72,6 +78,8 @@ def real_array(name, value, *, units=None, requirement="a finite number", hint=N
         Short explanation appended in parentheses.
     ndim : tuple of int
         Accepted numbers of dimensions (default: a scalar or a 1-D list).
+    axes : tuple of str, optional
+        Names of the array axes for the message (see :func:`check`).
 
     Returns
     -------
@@ -101,7 +109,7 @@ def real_array(name, value, *, units=None, requirement="a finite number", hint=N
         shapes = {0: "a scalar", 1: "a 1-D list of values", 2: "a 2-D array"}
         allowed = " or ".join(shapes.get(n, f"a {n}-D array") for n in ndim)
         raise ValueError(f"{name} must be {allowed}, got shape {arr.shape}")
-    check(name, arr, ~np.isfinite(arr), requirement, units=units, hint=hint)
+    check(name, arr, ~np.isfinite(arr), requirement, units=units, hint=hint, axes=axes)
     return arr
 
 
@@ -139,7 +147,7 @@ def check(name, arr, mask, requirement, *, units=None, hint=None, axes=None):
 def positive(name, value, *, units=None, hint=None, ndim=(0, 1), axes=None):
     """``value`` as a float array after checking that every entry is a finite number > 0."""
     requirement = "a positive finite number"
-    arr = real_array(name, value, units=units, requirement=requirement, hint=hint, ndim=ndim)
+    arr = real_array(name, value, units=units, requirement=requirement, hint=hint, ndim=ndim, axes=axes)
     check(name, arr, arr <= 0.0, requirement, units=units, hint=hint, axes=axes)
     return arr
 
@@ -147,7 +155,7 @@ def positive(name, value, *, units=None, hint=None, ndim=(0, 1), axes=None):
 def non_negative(name, value, *, units=None, hint=None, ndim=(0, 1), axes=None):
     """``value`` as a float array after checking that every entry is a finite number >= 0."""
     requirement = "a finite number >= 0"
-    arr = real_array(name, value, units=units, requirement=requirement, hint=hint, ndim=ndim)
+    arr = real_array(name, value, units=units, requirement=requirement, hint=hint, ndim=ndim, axes=axes)
     check(name, arr, arr < 0.0, requirement, units=units, hint=hint, axes=axes)
     return arr
 
@@ -158,7 +166,7 @@ def in_range(name, value, low, high, *, open_low=False, open_high=False, units=N
     interval = f"{'(' if open_low else '['}{low:g}, {high:g}{')' if open_high else ']'}"
     # The units go before the interval: "a finite number in m within [0, 11000]".
     requirement = _describe("a finite number", units, None) + f" within {interval}"
-    arr = real_array(name, value, requirement=requirement, hint=hint, ndim=ndim)
+    arr = real_array(name, value, requirement=requirement, hint=hint, ndim=ndim, axes=axes)
     below = arr <= low if open_low else arr < low
     above = arr >= high if open_high else arr > high
     check(name, arr, below | above, requirement, hint=hint, axes=axes)
@@ -219,3 +227,57 @@ def batch_size(lengths):
     if size == 0:
         raise ValueError("batch arguments are empty: give at least one value")
     return size
+
+
+def format_bytes(size):
+    """``size`` bytes as a short text with a decimal unit (``'4.3 GB'``)."""
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if size < 1000.0 or unit == "PB":
+            return f"{size:.3g} {unit}"
+        size /= 1000.0
+    return f"{size:.3g} PB"  # pragma: no cover
+
+
+def _memory_limit():
+    """Half of the physical memory (bytes), or 4 GB where the platform does not tell."""
+    try:
+        return 0.5 * os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):
+        return 4e9
+
+
+def memory_bound(what, num_nodes, num_radial, *, bytes_per_value=BYTES_PER_NODE_STATION, limit=None, hint=None,
+                 at_least=False):
+    """Check that a vectorised run of ``num_nodes`` designs or points at ``num_radial`` stations fits in memory.
+
+    Called before the run, so a size that cannot fit stops at once with the estimate instead of
+    exhausting the memory.
+
+    Parameters
+    ----------
+    what : str
+        The argument that sets the size, e.g. ``'--advance-ratio N'``; used in the message.
+    num_nodes, num_radial : int
+        Designs (or operating points) and radial stations.
+    bytes_per_value : float
+        Estimated peak memory per design and station (default :data:`BYTES_PER_NODE_STATION`).
+    limit : float, optional
+        Largest estimate allowed (bytes); default half of the physical memory.
+    hint : str, optional
+        What to do instead, appended to the message.
+    at_least : bool
+        ``num_radial`` is a lower bound (the station count is not known yet); the message says so.
+
+    Raises
+    ------
+    ValueError
+        If the estimate exceeds ``limit``; the message gives the estimate and the limit.
+    """
+    source = " (half the memory of this machine)" if limit is None else ""
+    limit = _memory_limit() if limit is None else float(limit)
+    estimate = float(num_nodes) * float(num_radial) * float(bytes_per_value)
+    if estimate > limit:
+        raise ValueError(f"{what} = {int(num_nodes)} with {'at least ' if at_least else ''}{int(num_radial)} "
+                         f"stations would need about "
+                         f"{format_bytes(estimate)} of memory (estimated {format_bytes(bytes_per_value)} per "
+                         f"point and station); the limit is {format_bytes(limit)}{source}" + (f": {hint}" if hint else ""))

@@ -60,3 +60,13 @@ def test_valid_values_pass_through():
     assert validation.choice("loss_model", "tip", ("tip_hub", "tip")) == "tip"
     assert validation.batch_size({}) == 1 and validation.batch_size({"rpm": 3, "radius": 3}) == 3
     validation.smaller("hub_radius", [0.1, 0.2], "radius", 0.5)
+
+
+def test_memory_bound_gives_the_estimate():
+    # 1e9 points x 6 stations x 3 kB (the measured peak per point and station, rounded up) = 18 TB.
+    with pytest.raises(ValueError) as info:
+        validation.memory_bound("--advance-ratio N", 10**9, 6, limit=8e9, hint="use fewer points")
+    assert str(info.value) == ("--advance-ratio N = 1000000000 with 6 stations would need about 18 TB of memory "
+                               "(estimated 3 kB per point and station); the limit is 8 GB: use fewer points")
+    validation.memory_bound("designs", 10_000, 30, limit=8e9)  # 0.9 GB: the batches of 10,000 fit
+    assert validation.format_bytes(999) == "999 B" and validation.format_bytes(4.3e9) == "4.3 GB"

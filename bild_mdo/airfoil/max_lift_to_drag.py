@@ -15,6 +15,10 @@ differentiates the solution by the implicit function theorem::
     g_Re    = cl_aRe cd + cl_a cd_Re - cl_Re cd_a - cl cd_aRe
     dcl*/dRe = cl_a dalpha*/dRe + cl_Re,   dcd*/dRe = cd_a dalpha*/dRe + cd_Re
 
+The same holds for any other parameter ``p`` of the polar, the Mach number
+and the station's ``r/R`` (``g_p`` with ``p`` for ``Re``), so the point at
+given ``(Re, M, r/R)`` comes with its derivatives with respect to all three.
+
 The solver needs only the polar's ``evaluate`` and ``second_derivatives``
 methods, so it sits below :mod:`bild_mdo.airfoil.polar`, whose
 :meth:`~bild_mdo.airfoil.polar.Polar.max_lift_to_drag` calls it.
@@ -45,12 +49,16 @@ class MaxLiftToDrag(NamedTuple):
     dcd_dre: np.ndarray
 
 
-def _g_and_slope(polar, alpha, reynolds):
-    v = polar.evaluate(alpha, reynolds)
-    s = polar.second_derivatives(alpha, reynolds)
-    g = v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha
-    dg = s.d2cl_dalpha2 * v.cd - v.cl * s.d2cd_dalpha2
-    return g, dg, v, s
+_STATION_FIELDS = MaxLiftToDrag._fields + ("dalpha_dmach", "dcl_dmach", "dcd_dmach", "dalpha_dradial_fraction",
+                                           "dcl_dradial_fraction", "dcd_dradial_fraction")
+StationMaxLiftToDrag = NamedTuple("StationMaxLiftToDrag", [(f, np.ndarray) for f in _STATION_FIELDS])
+StationMaxLiftToDrag.__doc__ = """The maximum-L/D point at given ``(Re, M, r/R)`` with derivatives with respect to all three.
+
+Fields: those of :class:`MaxLiftToDrag`, then ``dalpha_dmach, dcl_dmach, dcd_dmach,
+dalpha_dradial_fraction, dcl_dradial_fraction, dcd_dradial_fraction``.  Returned when
+``mach`` or ``radial_fraction`` is given; the derivatives with respect to an argument
+that was not given are zero.
+"""
 
 
 def _polar_name(polar):
@@ -61,7 +69,12 @@ def _listed(reynolds):
     return f"{reynolds[:5].tolist()}{' ...' if reynolds.size > 5 else ''}"
 
 
-def max_lift_to_drag(polar, reynolds, alpha_range=None):
+def _extra_args(extra, idx=None):
+    """Keyword arguments ``mach``/``radial_fraction`` of the polar calls, restricted to rows ``idx``."""
+    return {k: (v if idx is None else v[idx]) for k, v in extra.items()}
+
+
+def max_lift_to_drag(polar, reynolds, alpha_range=None, mach=None, radial_fraction=None):
     """Angle of attack, lift and drag of maximum ``cl/cd`` at each Reynolds number.
 
     Parameters
@@ -72,17 +85,23 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
     reynolds : array_like
         Chord Reynolds numbers, any shape.  Complex values (complex step) are
         evaluated at the real part and the imaginary part is carried to first
-        order with the exact Re derivatives, like :meth:`Polar.evaluate`.
+        order with the exact derivatives, like :meth:`Polar.evaluate`
+        (likewise for complex ``mach`` and ``radial_fraction``).
     alpha_range : tuple of float, optional
         ``(low, high)`` angles of attack (rad) in which the maximum is sought.
         Default: the polar's ``alpha_scan_range`` attribute if it has one
         (the attached-flow range), else -10 deg to 25 deg.
+    mach : array_like, optional
+        Mach numbers, broadcast against ``reynolds``.
+    radial_fraction : array_like, optional
+        ``r/R`` of each point (per-station point of a spanwise polar), broadcast.
 
     Returns
     -------
-    MaxLiftToDrag
-        ``alpha`` (rad), ``cl``, ``cd`` and their derivatives with respect to
-        ``Re``, each with the shape of ``reynolds``.
+    MaxLiftToDrag or StationMaxLiftToDrag
+        ``alpha`` (rad), ``cl``, ``cd`` and their derivatives, each with the
+        broadcast shape of the inputs; :class:`StationMaxLiftToDrag` when
+        ``mach`` or ``radial_fraction`` is given.
 
     Raises
     ------
@@ -92,13 +111,17 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
         small), if a Reynolds number is not finite, or if the Newton solve
         does not converge (the message names the Reynolds numbers).
     """
-    reynolds = np.asarray(reynolds)
-    is_complex = np.iscomplexobj(reynolds)
+    given = {"mach": mach, "radial_fraction": radial_fraction}
+    given = {k: np.asarray(v) for k, v in given.items() if v is not None}
+    inputs = np.broadcast_arrays(np.asarray(reynolds), *given.values())
+    reynolds = inputs[0]
+    is_complex = any(np.iscomplexobj(x) for x in inputs)
     re_real = np.asarray(np.real(reynolds), dtype=float)
     if not np.all(np.isfinite(re_real)):
         raise ValueError("max_lift_to_drag: Reynolds numbers must be finite")
     shape = re_real.shape
     re_flat = re_real.ravel()
+    extra = {k: np.asarray(np.real(v), dtype=float).ravel() for k, v in zip(given, inputs[1:])}
     if alpha_range is None:
         alpha_range = getattr(polar, "alpha_scan_range", DEFAULT_SCAN_RANGE)
     low, high = (float(a) for a in alpha_range)
@@ -110,7 +133,7 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
     n_scan = max(int(np.ceil((high - low) / _SCAN_STEP)) + 1, 3)
     grid = np.linspace(low, high, n_scan)
     a2, r2 = np.meshgrid(grid, re_flat)
-    v = polar.evaluate(a2, r2)
+    v = polar.evaluate(a2, r2, **{k: x[:, None] for k, x in extra.items()})
     g = v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha
     ratio = v.cl / v.cd
     is_max = (g[:, :-1] > 0.0) & (g[:, 1:] <= 0.0) & (v.cl[:, :-1] > 0.0) & (v.cd[:, :-1] > 0.0)
@@ -125,7 +148,11 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
             f"{_listed(re_flat[missing])}; check the polar or pass a wider alpha_range")
 
     def residual(alpha, idx):
-        g_a, dg_a, v, _ = _g_and_slope(polar, alpha, re_flat[idx])
+        kw = _extra_args(extra, idx)
+        v = polar.evaluate(alpha, re_flat[idx], **kw)
+        s = polar.second_derivatives(alpha, re_flat[idx], **kw)
+        g_a = v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha
+        dg_a = s.d2cl_dalpha2 * v.cd - v.cl * s.d2cd_dalpha2
         # Magnitude of the two terms of g: g is zero to round-off below 4 eps times it.
         scale = np.abs(v.dcl_dalpha * v.cd) + np.abs(v.cl * v.dcd_dalpha)
         return g_a, dg_a, scale
@@ -139,16 +166,30 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None):
             "polar and its derivatives are finite near the maximum")
     alpha = solution.x
 
-    _, dg_a, v, s = _g_and_slope(polar, alpha, re_flat)
-    g_re = (s.d2cl_dalpha_dre * v.cd + v.dcl_dalpha * v.dcd_dre
-            - v.dcl_dre * v.dcd_dalpha - v.cl * s.d2cd_dalpha_dre)
-    dalpha = -g_re / dg_a
-    dcl = v.dcl_dalpha * dalpha + v.dcl_dre
-    dcd = v.dcd_dalpha * dalpha + v.dcd_dre
+    v = polar.evaluate(alpha, re_flat, **extra)
+    s = polar.second_derivatives(alpha, re_flat, **extra)
+    dg_a = s.d2cl_dalpha2 * v.cd - v.cl * s.d2cd_dalpha2
+    derivatives = []
+    for p in ("re", "mach", "radial_fraction"):
+        if p != "re" and p not in extra:
+            zero = np.zeros_like(alpha)
+            derivatives.append((zero, zero, zero))
+            continue
+        cl_p, cd_p = getattr(v, f"dcl_d{p}"), getattr(v, f"dcd_d{p}")
+        cl_ap, cd_ap = getattr(s, f"d2cl_dalpha_d{p}"), getattr(s, f"d2cd_dalpha_d{p}")
+        # Implicit function theorem on g(alpha*, p) = 0 (module docstring).
+        g_p = cl_ap * v.cd + v.dcl_dalpha * cd_p - cl_p * v.dcd_dalpha - v.cl * cd_ap
+        dalpha = -g_p / dg_a
+        derivatives.append((dalpha, v.dcl_dalpha * dalpha + cl_p, v.dcd_dalpha * dalpha + cd_p))
     cl, cd = v.cl, v.cd
     if is_complex:
-        ire = np.imag(reynolds).ravel()
-        alpha = alpha + 1j * ire * dalpha
-        cl = cl + 1j * ire * dcl
-        cd = cd + 1j * ire * dcd
-    return MaxLiftToDrag(*(np.reshape(x, shape) for x in (alpha, cl, cd, dalpha, dcl, dcd)))
+        imag = [np.imag(inputs[0]).ravel()] + [np.imag(x).ravel() for x in inputs[1:]]
+        slopes = [derivatives[0]] + [derivatives[1 if k == "mach" else 2] for k in extra]
+        alpha = alpha + 1j * sum(h * d[0] for h, d in zip(imag, slopes))
+        cl = cl + 1j * sum(h * d[1] for h, d in zip(imag, slopes))
+        cd = cd + 1j * sum(h * d[2] for h, d in zip(imag, slopes))
+    fields = (alpha, cl, cd) + derivatives[0]
+    if not extra:
+        return MaxLiftToDrag(*(np.reshape(x, shape) for x in fields))
+    fields += derivatives[1] + derivatives[2]
+    return StationMaxLiftToDrag(*(np.reshape(x, shape) for x in fields))

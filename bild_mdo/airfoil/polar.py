@@ -6,12 +6,33 @@ may supply their own polar: subclass :class:`Polar` and implement
 :meth:`Polar._evaluate_real` (and :meth:`Polar._second_derivatives_real` if the
 polar is used for the maximum-L/D point of BILD).
 
+Two optional arguments extend every query (``evaluate``, ``second_derivatives``,
+``max_lift_to_drag``); left out, the result and its cost are exactly those of
+the two-argument call:
+
+``mach``
+    Local Mach number.  The result gains ``d/dmach`` fields
+    (:class:`MachPolarValues`).  A polar whose data do not depend on Mach
+    number ignores it (zero derivatives); Mach-dependent polars are
+    :class:`~bild_mdo.airfoil.mach_surrogate.MachTabulatedPolar` (tables at
+    several Mach numbers) and
+    :class:`~bild_mdo.airfoil.compressibility.CompressiblePolar` (a
+    Prandtl-Glauert or Karman-Tsien correction of single-Mach data).
+    Subclasses implement :meth:`Polar._evaluate_mach_real`.
+``radial_fraction``
+    ``r/R`` of the blade station.  The result gains ``d/dmach`` and
+    ``d/d(r/R)`` fields (:class:`StationPolarValues`).  A polar that is the
+    same along the span ignores it; :class:`~bild_mdo.airfoil.spanwise.SpanwisePolar`
+    blends airfoils placed along the span.  Subclasses implement
+    :meth:`Polar._evaluate_station_real`.
+
 Complex step
 ------------
 OpenMDAO's complex-step checks push complex inputs through ``compute``.
 Spline libraries do not accept complex numbers, so :meth:`Polar.evaluate`
 evaluates the model at the real parts and carries the imaginary parts with the
-analytic first derivatives, ``f(x + ih) = f(x) + i h f'(x) + O(h^2)``.  With
+analytic first derivatives, ``f(x + ih) = f(x) + i h f'(x) + O(h^2)``
+(for ``alpha``, ``reynolds``, ``mach`` and ``radial_fraction`` alike).  With
 OpenMDAO's step of 1e-40 the neglected term is far below round-off, so the
 result is exactly what a complex-capable polar would give.
 """
@@ -36,6 +57,22 @@ class PolarValues(NamedTuple):
     dcd_dre: np.ndarray
 
 
+def _extended(name, base, extra, doc):
+    """A NamedTuple with the fields of ``base`` followed by ``extra`` (arrays)."""
+    kind = NamedTuple(name, [(f, np.ndarray) for f in base._fields + extra])
+    kind.__doc__ = doc
+    return kind
+
+
+_MACH = ("dcl_dmach", "dcd_dmach")
+_STATION = ("dcl_dradial_fraction", "dcd_dradial_fraction")
+MachPolarValues = _extended("MachPolarValues", PolarValues, _MACH, """\
+:class:`PolarValues`, then ``dcl_dmach, dcd_dmach`` (``evaluate(..., mach=M)``).""")
+StationPolarValues = _extended("StationPolarValues", PolarValues, _MACH + _STATION, """\
+:class:`MachPolarValues`, then ``dcl_dradial_fraction, dcd_dradial_fraction``
+(``evaluate(..., radial_fraction=x)``); the Mach derivatives are zero when no Mach number was given.""")
+
+
 class PolarSecondDerivatives(NamedTuple):
     """Second derivatives needed by the implicit-function derivative of the max-L/D point."""
 
@@ -45,17 +82,50 @@ class PolarSecondDerivatives(NamedTuple):
     d2cd_dalpha_dre: np.ndarray
 
 
+MachPolarSecondDerivatives = _extended(
+    "MachPolarSecondDerivatives", PolarSecondDerivatives, ("d2cl_dalpha_dmach", "d2cd_dalpha_dmach"), """\
+:class:`PolarSecondDerivatives`, then the mixed alpha-Mach derivatives ``d2cl_dalpha_dmach, d2cd_dalpha_dmach``.""")
+StationPolarSecondDerivatives = _extended(
+    "StationPolarSecondDerivatives", MachPolarSecondDerivatives,
+    ("d2cl_dalpha_dradial_fraction", "d2cd_dalpha_dradial_fraction"), """\
+:class:`MachPolarSecondDerivatives`, then the mixed alpha-``r/R`` derivatives
+``d2cl_dalpha_dradial_fraction, d2cd_dalpha_dradial_fraction``.""")
+
+
 def _real(x):
     return np.real(x) if np.iscomplexobj(x) else x
 
 
+def _flat(x):
+    return np.require(np.atleast_1d(_real(x)), float, "C")
+
+
+def _checked_mach(mach):
+    real = np.asarray(_real(mach), dtype=float)
+    if not np.all(np.isfinite(real)) or np.any(real < 0.0):
+        bad = real[~(np.isfinite(real) & (real >= 0.0))].ravel()[0]
+        raise ValueError(f"Mach number must be finite and >= 0, got {bad!r}")
+    return mach
+
+
+def _checked_fraction(radial_fraction):
+    real = np.asarray(_real(radial_fraction), dtype=float)
+    if not np.all(np.isfinite(real)):
+        raise ValueError("radial_fraction (r/R) must be finite")
+    return radial_fraction
+
+
 class Polar(abc.ABC):
-    """Base class of airfoil polars: ``C_l(alpha, Re)``, ``C_d(alpha, Re)`` with derivatives."""
+    """Base class of airfoil polars: ``C_l(alpha, Re[, M, r/R])``, ``C_d`` with derivatives."""
 
     #: Short human-readable name, used in messages and result files.
     name = "polar"
+    #: Whether the coefficients change with Mach number (False: ``mach`` is ignored).
+    varies_with_mach = False
+    #: Whether the coefficients change along the span (True: ``radial_fraction`` is required).
+    varies_along_span = False
 
-    def evaluate(self, alpha, reynolds):
+    def evaluate(self, alpha, reynolds, mach=None, radial_fraction=None):
         """Lift and drag coefficients with first derivatives.
 
         Parameters
@@ -64,59 +134,96 @@ class Polar(abc.ABC):
             Angle of attack (rad).  Real or complex (complex step).
         reynolds : array_like
             Chord Reynolds number.  Broadcast against ``alpha``.
+        mach : array_like, optional
+            Local Mach number (>= 0), broadcast.  ``None`` (default): no
+            compressibility, exactly the two-argument polar.
+        radial_fraction : array_like, optional
+            ``r/R`` of each point, broadcast; needed by polars that vary along
+            the span, ignored (zero derivatives) by the others.
 
         Returns
         -------
-        PolarValues
+        PolarValues, MachPolarValues or StationPolarValues
             ``cl, cd`` (complex when an input is) and real first derivatives,
-            all with the broadcast shape of the inputs.
+            all with the broadcast shape of the inputs: :class:`PolarValues`
+            without ``mach`` and ``radial_fraction``, :class:`MachPolarValues`
+            with ``mach`` only, :class:`StationPolarValues` with ``radial_fraction``.
         """
-        alpha = np.asarray(alpha)
-        reynolds = np.asarray(reynolds)
-        alpha, reynolds = np.broadcast_arrays(alpha, reynolds)
-        shape = alpha.shape
-        vals = self._evaluate_real(np.require(np.atleast_1d(_real(alpha)), float, "C"),
-                                   np.require(np.atleast_1d(_real(reynolds)), float, "C"))
-        vals = PolarValues(*(np.reshape(v, shape) for v in vals))
-        if not (np.iscomplexobj(alpha) or np.iscomplexobj(reynolds)):
-            return vals
-        ia = np.imag(alpha)
-        ire = np.imag(reynolds)
-        cl = vals.cl + 1j * (vals.dcl_dalpha * ia + vals.dcl_dre * ire)
-        cd = vals.cd + 1j * (vals.dcd_dalpha * ia + vals.dcd_dre * ire)
-        return vals._replace(cl=cl, cd=cd)
+        if mach is None and radial_fraction is None:
+            self._require_station()
+            alpha = np.asarray(alpha)
+            reynolds = np.asarray(reynolds)
+            alpha, reynolds = np.broadcast_arrays(alpha, reynolds)
+            vals = self._evaluate_real(_flat(alpha), _flat(reynolds))
+            return _carry(vals, alpha.shape, (alpha, reynolds), ((2, 3), (4, 5)))
+        if radial_fraction is None:
+            self._require_station()
+            args = np.broadcast_arrays(np.asarray(alpha), np.asarray(reynolds), np.asarray(_checked_mach(mach)))
+            vals = self._evaluate_mach_real(*(_flat(a) for a in args))
+            return _carry(vals, args[0].shape, args, ((2, 3, 6), (4, 5, 7)))
+        args = [np.asarray(alpha), np.asarray(reynolds),
+                np.asarray(0.0 if mach is None else _checked_mach(mach)),
+                np.asarray(_checked_fraction(radial_fraction))]
+        args = np.broadcast_arrays(*args)
+        flat = [_flat(a) for a in args]
+        vals = self._evaluate_station_real(flat[0], flat[1], None if mach is None else flat[2], flat[3])
+        return _carry(vals, args[0].shape, args, ((2, 3, 6, 8), (4, 5, 7, 9)))
 
-    def second_derivatives(self, alpha, reynolds):
+    def second_derivatives(self, alpha, reynolds, mach=None, radial_fraction=None):
         """Second derivatives of ``cl`` and ``cd`` (real inputs only).
 
+        ``mach`` and ``radial_fraction`` as in :meth:`evaluate`.
+
         Returns
         -------
-        PolarSecondDerivatives
+        PolarSecondDerivatives, MachPolarSecondDerivatives or StationPolarSecondDerivatives
         """
-        alpha, reynolds = np.broadcast_arrays(np.asarray(_real(alpha), dtype=float),
-                                              np.asarray(_real(reynolds), dtype=float))
-        second = self._second_derivatives_real(np.require(np.atleast_1d(alpha), float, "C"),
-                                               np.require(np.atleast_1d(reynolds), float, "C"))
-        return PolarSecondDerivatives(*(np.reshape(v, alpha.shape) for v in second))
+        if mach is None and radial_fraction is None:
+            self._require_station()
+            alpha, reynolds = np.broadcast_arrays(np.asarray(_real(alpha), dtype=float),
+                                                  np.asarray(_real(reynolds), dtype=float))
+            second = self._second_derivatives_real(_flat(alpha), _flat(reynolds))
+            return type(second)(*(np.reshape(v, alpha.shape) for v in second))
+        if radial_fraction is None:
+            self._require_station()
+            args = np.broadcast_arrays(*(np.asarray(_real(a), dtype=float)
+                                         for a in (alpha, reynolds, _checked_mach(mach))))
+            second = self._second_derivatives_mach_real(*(_flat(a) for a in args))
+        else:
+            args = np.broadcast_arrays(*(np.asarray(_real(a), dtype=float) for a in (
+                alpha, reynolds, 0.0 if mach is None else _checked_mach(mach), _checked_fraction(radial_fraction))))
+            flat = [_flat(a) for a in args]
+            second = self._second_derivatives_station_real(flat[0], flat[1], None if mach is None else flat[2],
+                                                           flat[3])
+        return type(second)(*(np.reshape(v, args[0].shape) for v in second))
 
-    def max_lift_to_drag(self, reynolds):
-        """Maximum-L/D point ``alpha*(Re), cl*(Re), cd*(Re)`` with Re derivatives.
+    def max_lift_to_drag(self, reynolds, mach=None, radial_fraction=None):
+        """Maximum-L/D point ``alpha*, cl*, cd*`` with derivatives.
 
         Exact on this polar (a Newton solve of d(cl/cd)/d(alpha) = 0), not a
-        grid scan.  Complex ``reynolds`` is carried to first order like
+        grid scan.  Complex inputs are carried to first order like
         :meth:`evaluate`.
 
         Parameters
         ----------
         reynolds : array_like
             Chord Reynolds numbers, any shape.
+        mach : array_like, optional
+            Mach numbers, broadcast against ``reynolds``.
+        radial_fraction : array_like, optional
+            ``r/R`` of each station (BILD's per-station point), broadcast.
 
         Returns
         -------
-        MaxLiftToDrag
+        MaxLiftToDrag or StationMaxLiftToDrag
             See :func:`bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag`.
         """
-        return max_lift_to_drag(self, reynolds)
+        return max_lift_to_drag(self, reynolds, mach=mach, radial_fraction=radial_fraction)
+
+    def _require_station(self):
+        if self.varies_along_span:
+            raise ValueError(f"{self.name}: this polar varies along the span; pass radial_fraction=r/R "
+                             "(the station's radius over the tip radius)")
 
     @abc.abstractmethod
     def _evaluate_real(self, alpha, reynolds):
@@ -126,3 +233,42 @@ class Polar(abc.ABC):
         raise NotImplementedError(
             f"{type(self).__name__} does not provide second derivatives, which the "
             "maximum-L/D point needs; implement _second_derivatives_real")
+
+    def _evaluate_mach_real(self, alpha, reynolds, mach):
+        """:class:`MachPolarValues` at real flat arrays; default: independent of Mach number."""
+        return _padded(MachPolarValues, self._evaluate_real(alpha, reynolds))
+
+    def _second_derivatives_mach_real(self, alpha, reynolds, mach):
+        return _padded(MachPolarSecondDerivatives, self._second_derivatives_real(alpha, reynolds))
+
+    def _evaluate_station_real(self, alpha, reynolds, mach, radial_fraction):
+        """:class:`StationPolarValues` (``mach`` may be None); default: the same along the span."""
+        if mach is None:
+            return _padded(StationPolarValues, self._evaluate_real(alpha, reynolds))
+        return _padded(StationPolarValues, self._evaluate_mach_real(alpha, reynolds, mach))
+
+    def _second_derivatives_station_real(self, alpha, reynolds, mach, radial_fraction):
+        if mach is None:
+            return _padded(StationPolarSecondDerivatives, self._second_derivatives_real(alpha, reynolds))
+        return _padded(StationPolarSecondDerivatives, self._second_derivatives_mach_real(alpha, reynolds, mach))
+
+
+def _padded(kind, values):
+    """``values`` extended to the fields of ``kind`` with zero derivatives (a parameter the polar ignores)."""
+    zero = np.zeros_like(values[0])
+    return kind(*values, *(zero for _ in range(len(kind._fields) - len(values))))
+
+
+def _carry(vals, shape, inputs, slopes):
+    """Reshape ``vals`` and carry the imaginary parts of complex ``inputs`` with the first derivatives.
+
+    ``slopes`` gives, for cl and for cd, the field index of the derivative with
+    respect to each input after the first two (``alpha`` and ``reynolds`` first).
+    """
+    vals = type(vals)(*(np.reshape(v, shape) for v in vals))
+    if not any(np.iscomplexobj(x) for x in inputs):
+        return vals
+    imag = [np.imag(x) for x in inputs]
+    cl = vals.cl + 1j * sum(vals[k] * h for k, h in zip(slopes[0], imag))
+    cd = vals.cd + 1j * sum(vals[k] * h for k, h in zip(slopes[1], imag))
+    return vals._replace(cl=cl, cd=cd)

@@ -1,11 +1,13 @@
 """Smooth ``C_l(alpha, Re)``, ``C_d(alpha, Re)`` surrogate of tabulated polars (paper Sec. 3.2, App. 7.2)."""
 from __future__ import annotations
 
+import functools
 import warnings
+from pathlib import Path
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
+from bild_mdo.airfoil import cache, viterna
 from bild_mdo.airfoil.polar import Polar, PolarSecondDerivatives, PolarValues
 from bild_mdo.airfoil.sources.polar_data import PolarData
 from bild_mdo.airfoil.sources.readers import read_polar_table, read_xfoil_polar
@@ -16,6 +18,41 @@ _LN10 = np.log(10.0)
 # Points per block in evaluation: keeps the gathered coefficients (32 floats per
 # point) in cache-sized pieces.
 _CHUNK = 8192
+
+#: Version of the surrogate construction, part of every cache key (with a hash of
+#: this module's and viterna's source, and scipy's version): bump it when the
+#: numbers a TabulatedPolar gives change for the same data and settings.
+SURROGATE_VERSION = 1
+
+# Everything a TabulatedPolar needs to evaluate, as stored in the polar cache.
+_STATE_ARRAYS = ("reynolds", "coef", "grid", "ext_cl", "ext_cd", "ext_dcl", "ext_dcd", "ext_stall",
+                 "ext_stall_negative", "scalars", "name", "data_mach")
+
+
+def _default_settings():
+    return {"cd_max": DEFAULT_CD_MAX, "cd_reverse": DEFAULT_CD_REVERSE, "epsilon": STALL_BLEND_HALF_WIDTH,
+            "pre_stall": "spline", "smoothing": None, "alpha_step_deg": 0.25}
+
+
+@functools.lru_cache(maxsize=None)
+def code_version():
+    """Identifier of the code that builds surrogates: a key part of every cached surrogate.
+
+    Returns
+    -------
+    str
+        :data:`SURROGATE_VERSION`, scipy's version (its smoothing splines fit
+        the data) and a hash of this module's and :mod:`~bild_mdo.airfoil.viterna`'s source.
+    """
+    import scipy
+
+    sources = []
+    for module_file in (__file__, viterna.__file__):
+        try:
+            sources.append(Path(module_file).read_bytes())
+        except OSError:
+            sources.append(b"")
+    return f"{SURROGATE_VERSION}|scipy {scipy.__version__}|{cache.hash_key(*sources)[:16]}"
 
 
 class TabulatedPolar(Polar):
@@ -54,7 +91,15 @@ class TabulatedPolar(Polar):
 
     Reynolds numbers outside the table are clamped to the nearest tabulated
     Reynolds number (the Re derivatives are zero there) and one warning per
-    polar object is issued.  The Mach number of the data is ignored.
+    polar object is issued.  All tables must share one Mach number
+    (:attr:`data_mach`); the polar does not depend on Mach number (tables at
+    several Mach numbers: :class:`~bild_mdo.airfoil.mach_surrogate.MachTabulatedPolar`;
+    a correction of single-Mach data: :class:`~bild_mdo.airfoil.compressibility.CompressiblePolar`).
+
+    Building takes about 0.3 s per Reynolds number (the smoothing-spline
+    fits); :meth:`cached` stores the result on disk
+    (:mod:`bild_mdo.airfoil.cache`) so that later processes load it in
+    milliseconds.
 
     Parameters
     ----------
@@ -84,6 +129,12 @@ class TabulatedPolar(Polar):
     alpha_scan_range : tuple of float
         ``(min negative stall, max positive stall)`` angle (rad): where the
         maximum-L/D search looks.
+    data_mach : float
+        Mach number of the tables.
+    data : tuple of PolarData or None
+        The tables it was built from (``None`` when made by :meth:`from_state` alone).
+    settings : dict or None
+        The constructor settings (``cd_max`` ... ``alpha_step_deg``).
     """
 
     name = "tabulated"
@@ -91,12 +142,22 @@ class TabulatedPolar(Polar):
     def __init__(self, polars, *, cd_max=DEFAULT_CD_MAX, cd_reverse=DEFAULT_CD_REVERSE,
                  epsilon=STALL_BLEND_HALF_WIDTH, pre_stall="spline", smoothing=None,
                  alpha_step_deg=0.25, name=None):
+        from scipy.interpolate import CubicSpline  # only when building: a cached load needs numpy only
+
         polars = sorted(polars, key=lambda p: p.reynolds)
         if not polars:
             raise ValueError("TabulatedPolar needs at least one polar")
+        machs = sorted({float(p.mach) for p in polars})
+        if len(machs) > 1:
+            raise ValueError(f"TabulatedPolar: the tables have several Mach numbers {machs}; use "
+                             "bild_mdo.airfoil.mach_surrogate.MachTabulatedPolar for Mach-dependent data")
         reynolds = np.array([p.reynolds for p in polars], dtype=float)
         if np.any(np.diff(reynolds) <= 0):
             raise ValueError(f"TabulatedPolar: Reynolds numbers must be distinct, got {reynolds.tolist()}")
+        self.data_mach = machs[0]
+        self.data = tuple(polars)
+        self.settings = {"cd_max": cd_max, "cd_reverse": cd_reverse, "epsilon": epsilon, "pre_stall": pre_stall,
+                         "smoothing": smoothing, "alpha_step_deg": alpha_step_deg}
         if name is not None:
             self.name = str(name)
         grid = default_alpha_grid(alpha_step_deg)
@@ -106,10 +167,7 @@ class TabulatedPolar(Polar):
         self.reynolds = reynolds
         self.alpha_scan_range = (min(e.alpha_stall_negative for e in self.extended),
                                  max(e.alpha_stall for e in self.extended))
-        self._alpha0 = grid[0]
-        self._alpha_step = grid[1] - grid[0]
-        self._n_alpha_cells = grid.size - 1
-        self._log_re = np.log10(reynolds)
+        self._set_grid(grid)
         self._warned = False
 
         values = np.stack([np.stack([e.cl for e in self.extended], axis=1),
@@ -134,6 +192,116 @@ class TabulatedPolar(Polar):
         # Rows of 32 numbers: np.take on a 2-D table is several times faster than
         # fancy indexing of a 4-D one.
         self._coef = np.ascontiguousarray(coef.reshape(-1, 32))
+
+    def _set_grid(self, grid):
+        self._alpha0 = grid[0]
+        self._alpha_step = grid[1] - grid[0]
+        self._n_alpha_cells = grid.size - 1
+        self._log_re = np.log10(self.reynolds)
+        self._n_re_cells = max(self.reynolds.size - 1, 1)
+
+    # ------------------------------------------------------------ the disk cache
+    @classmethod
+    def cache_key(cls, polars, **kwargs):
+        """Hash of the data, the settings and :func:`code_version` (the polar cache key).
+
+        Parameters
+        ----------
+        polars : sequence of PolarData
+        **kwargs
+            Constructor settings (``name`` is not part of the key).
+
+        Returns
+        -------
+        str
+        """
+        settings = {k: v for k, v in kwargs.items() if k != "name"}
+        data = [(float(p.reynolds), float(p.mach), p.alpha_deg, p.cl, p.cd)
+                for p in sorted(polars, key=lambda p: (p.mach, p.reynolds))]
+        return cache.hash_key("TabulatedPolar", code_version(), settings, data)
+
+    @classmethod
+    def cached(cls, polars, **kwargs):
+        """:class:`TabulatedPolar` of ``polars``, loaded from the polar cache or built and stored there.
+
+        The same numbers as ``TabulatedPolar(polars, **kwargs)``, bit for bit
+        (the cache holds the spline coefficients themselves).  A change of the
+        data, the settings or the surrogate code changes the key, so the
+        surrogate is rebuilt (see :mod:`bild_mdo.airfoil.cache`).
+
+        Parameters
+        ----------
+        polars : sequence of PolarData
+        **kwargs
+            Passed to :class:`TabulatedPolar`.
+
+        Returns
+        -------
+        TabulatedPolar
+        """
+        polars = list(polars)
+        key = cls.cache_key(polars, **kwargs)
+        label = kwargs.get("name") or cls.name
+        state = cache.load_arrays("surrogate", label, key)
+        if state is not None and all(k in state for k in _STATE_ARRAYS):
+            polar = cls.from_state(state)
+            if kwargs.get("name") is not None:
+                polar.name = str(kwargs["name"])
+            polar.data = tuple(sorted(polars, key=lambda p: p.reynolds))
+            polar.settings = dict(_default_settings(), **{k: v for k, v in kwargs.items() if k != "name"})
+            return polar
+        polar = cls(polars, **kwargs)
+        cache.store_arrays("surrogate", label, key, polar.state())
+        return polar
+
+    def state(self):
+        """The arrays that define this surrogate (stored by :meth:`cached`, read by :meth:`from_state`).
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        ext = self.extended
+        return {
+            "reynolds": self.reynolds, "coef": self._coef, "grid": ext[0].alpha,
+            "ext_cl": np.stack([e.cl for e in ext]), "ext_cd": np.stack([e.cd for e in ext]),
+            "ext_dcl": np.stack([e.dcl_dalpha for e in ext]), "ext_dcd": np.stack([e.dcd_dalpha for e in ext]),
+            "ext_stall": np.array([e.alpha_stall for e in ext]),
+            "ext_stall_negative": np.array([e.alpha_stall_negative for e in ext]),
+            "scalars": np.array([self._alpha0, self._alpha_step, *self.alpha_scan_range]),
+            "name": np.array(self.name), "data_mach": np.array(self.data_mach),
+        }
+
+    @classmethod
+    def from_state(cls, state):
+        """A surrogate from the arrays of :meth:`state` (no fitting).
+
+        Parameters
+        ----------
+        state : mapping of str to ndarray
+
+        Returns
+        -------
+        TabulatedPolar
+        """
+        polar = cls.__new__(cls)
+        polar.name = str(state["name"])
+        polar.reynolds = np.asarray(state["reynolds"], dtype=float)
+        polar.data_mach = float(state["data_mach"])
+        grid = np.asarray(state["grid"], dtype=float)
+        polar.extended = [
+            viterna.ExtendedPolar(grid, *(np.asarray(state[k][i]) for k in ("ext_cl", "ext_cd", "ext_dcl",
+                                                                              "ext_dcd")),
+                                  float(state["ext_stall"][i]), float(state["ext_stall_negative"][i]), float(re))
+            for i, re in enumerate(polar.reynolds)]
+        scalars = np.asarray(state["scalars"], dtype=float)
+        polar.alpha_scan_range = (float(scalars[2]), float(scalars[3]))
+        polar._set_grid(grid)
+        polar._alpha0, polar._alpha_step = float(scalars[0]), float(scalars[1])
+        polar._coef = np.ascontiguousarray(state["coef"], dtype=float)
+        polar._warned = False
+        polar.data = polar.settings = None
+        return polar
 
     # ----------------------------------------------------------------- builders
     @classmethod

@@ -47,7 +47,6 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
-from scipy.interpolate import make_smoothing_spline
 
 #: Half width of the cubic stall blend of Eq. (33), 1.5 deg (paper Appendix 7.2).
 STALL_BLEND_HALF_WIDTH = np.radians(1.5)
@@ -261,7 +260,10 @@ def _smoothing_spline(alpha, values, lam):
     # A cubic smoothing spline (penalty on the integrated squared second derivative)
     # removes the point-to-point scatter of XFOIL (transition-point jumps) while keeping
     # the lift curve and the drag bucket; lam=None lets generalised cross-validation pick
-    # the penalty.
+    # the penalty.  Imported here: scipy.interpolate is only needed to build a
+    # surrogate, and a process that loads one from the polar cache does not pay for it.
+    from scipy.interpolate import make_smoothing_spline
+
     return make_smoothing_spline(alpha, values, lam=lam)
 
 

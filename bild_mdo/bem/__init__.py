@@ -10,9 +10,13 @@ StationsComp, InflowComp, BladeElementLoadsComp, RotorPerformanceComp
     The components.
 prandtl_loss, inflow_residual, induced_velocities, solve_bracketed
     Building blocks shared with the BILD method.
+BEMStateWarning, FLOW_STATE_NAMES
+    Per-station flow states (:mod:`bild_mdo.bem.flow_states`): the warning of
+    ``on_invalid='warn'`` and the names of the integer codes.
 """
 from bild_mdo.bem.analyze import BEMResult, analyze_rotor, station_radii
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
+from bild_mdo.bem.flow_states import FLOW_STATE_NAMES, BEMStateWarning
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.inflow_residual import (InducedVelocities, InflowResidual, force_coefficients,
                                           induced_velocities, inflow_residual)
@@ -23,7 +27,7 @@ from bild_mdo.bem.root_finding import find_brackets, solve_bracketed
 from bild_mdo.bem.stations import StationsComp
 
 __all__ = [
-    "BEMAnalysisGroup", "BEMResult", "InducedVelocities", "InflowComp", "InflowResidual",
+    "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "FLOW_STATE_NAMES", "InducedVelocities", "InflowComp", "InflowResidual",
     "LOSS_MODELS", "PrandtlLoss", "RotorPerformanceComp", "BladeElementLoadsComp", "StationsComp",
     "analyze_rotor", "find_brackets", "force_coefficients",
     "induced_velocities", "inflow_residual", "prandtl_loss", "rotor_performance", "solve_bracketed",

@@ -12,6 +12,7 @@ from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.blade_element import evaluate_section
+from bild_mdo.bem.flow_states import ON_INVALID, SOLVE_RANGES
 from bild_mdo.bem.loads import SECTION_OUTPUTS
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.bem.prandtl import LOSS_MODELS
@@ -33,7 +34,7 @@ def station_radii(radius, hub_radius, num_radial):
 
 
 #: Per-station quantities of the analysis besides the section outputs: name -> units.
-_STATE_UNITS = {"rho": "kg/m**3", "mu": "Pa*s", "radii": "m", "dr": "m", "phi": "rad"}
+_STATE_UNITS = {"rho": "kg/m**3", "mu": "Pa*s", "radii": "m", "dr": "m", "phi": "rad", "flow_state": None}
 
 
 def _to_dict(self):
@@ -61,6 +62,18 @@ BEMResult.__doc__ = """Result of :func:`analyze_rotor`.
     (``radii``, ``dr``, ``phi``, the section outputs of :data:`bild_mdo.bem.loads.SECTION_OUTPUTS`
     and the inflow ``residual``) have shape ``(nn, nr)`` or ``(nr,)``.  Units are listed in
     :attr:`UNITS` (SI; angles in rad; ``None`` = dimensionless).
+
+    ``flow_state`` holds the integer code of every station (:mod:`bild_mdo.bem.flow_states`:
+    0 no momentum solution (zero-loading fallback), 1 propeller, 2 propeller brake, 3 windmill,
+    4 turbulent wake / vortex ring, 5 mirror root with ``solve_range='full'``).  ``residual`` is
+    the momentum residual at ``phi``: zero to round-off except at code-0 stations, where no
+    momentum equation is solved.
+
+    ``efficiency`` (``V_x T / P``) and ``figure_of_merit`` (``T sqrt(|T|) / (P sqrt(2 rho pi R^2))``)
+    hold the formula's value at every design (smooth, so derivatives exist), but they mean
+    something only where ``thrust > 0`` and ``power > 0``: a windmilling rotor (T < 0, P < 0) can
+    show an "efficiency" above 1 and a braking one a negative figure of merit.  Text tables
+    print "n/a" there; filter with ``(result.thrust > 0) & (result.power > 0)``.
     """
 
 
@@ -77,7 +90,8 @@ def _voronoi_widths(radii, hub_radius, radius):
 
 
 def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, polar,
-                  altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None):
+                  altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None,
+                  on_invalid="warn", solve_range="physical"):
     """Analyse one rotor or a batch of rotors in axial flow with BEM theory.
 
     Parameters
@@ -112,6 +126,20 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     rho, mu : float or array_like, optional
         Air density (kg/m^3) and viscosity (Pa s) overriding the ISA (give both).
 
+    on_invalid : {'warn', 'raise', 'ignore'}
+        Stations in a flow state the momentum model does not represent: no momentum solution
+        (zero loading returned), turbulent wake / vortex ring (``V_x > 0``, ``dT < 0``, axial
+        induction ``a > 0.4``) or, with ``solve_range='full'``, a mirror root (``W < 0``); see
+        :mod:`bild_mdo.bem.flow_states`.  'warn' (default): one
+        :class:`~bild_mdo.bem.flow_states.BEMStateWarning` naming them (node, station, r/R, state;
+        the first few and the count); 'raise': :class:`openmdao.api.AnalysisError` naming them;
+        'ignore': nothing (the codes are still in ``result.flow_state``).
+    solve_range : {'physical', 'full'}
+        'physical' (default): CCBlade.jl's search order (Q1, then flow reversed through the disk,
+        then, for ``V_x > 0``, reversed tangential flow), accepting only roots with ``W > 0``.
+        'full': the first sign change of the residual in ``[-pi/2, pi)``, as before the flow
+        states existed (mirror roots kept and flagged).
+
     Returns
     -------
     BEMResult
@@ -121,11 +149,14 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     ValueError
         Invalid input (the message names the argument).
     openmdao.api.AnalysisError
-        If the inflow solve finds no bracket at some station.
+        With ``on_invalid='raise'`` and invalid stations; with ``solve_range='full'`` where no
+        sign change exists; where the total torque is zero (no performance metrics).
     """
     if not isinstance(polar, Polar):
         raise ValueError(f"polar must be a bild_mdo.airfoil.Polar, got {type(polar).__name__}")
     validation.choice("loss_model", loss_model, LOSS_MODELS)
+    validation.choice("on_invalid", on_invalid, ON_INVALID)
+    validation.choice("solve_range", solve_range, SOLVE_RANGES)
     num_blades = validation.integer("num_blades", num_blades)
     if (rho is None) != (mu is None):
         raise ValueError("give both rho and mu, or neither (then the ISA at altitude is used)")
@@ -194,7 +225,8 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     use_atmosphere = "rho" not in s
     prob = om.Problem(BEMAnalysisGroup(num_nodes=nn, num_radial=nr, num_blades=int(num_blades),
                                        polar=polar, loss_model=loss_model,
-                                       use_atmosphere=use_atmosphere, **group_kw),
+                                       use_atmosphere=use_atmosphere, on_invalid=on_invalid,
+                                       solve_range=solve_range, **group_kw),
                       reports=False)
     prob.setup(check=False)
     for name in ("radius", "hub_radius", "rpm", "v_axial"):
@@ -216,6 +248,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
                                  num_blades=int(num_blades), polar=polar, loss_model=loss_model,
                                  loads=False, partials=False, **node)
     fields["residual"] = values["residual"]
+    fields["flow_state"] = np.rint(fields["flow_state"]).astype(int)
     if single:
         fields = {k: v[0] for k, v in fields.items()}
     return BEMResult(**fields)

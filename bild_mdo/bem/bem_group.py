@@ -6,6 +6,7 @@ import openmdao.api as om
 
 from bild_mdo.atmosphere import AtmosphereComp
 from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_section_options
+from bild_mdo.bem.flow_states import declare_flow_state_options
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
@@ -29,6 +30,15 @@ class BEMAnalysisGroup(om.Group):
         False: ``rho`` and ``mu`` are inputs of the group.
     radial_fractions, width_fractions : array_like or None
         Optional user stations (see :class:`~bild_mdo.bem.stations.StationsComp`).
+    solve_range : {'physical', 'full'}
+        'physical' (default): CCBlade.jl's search order, only roots with ``W > 0``; a station
+        without one gets the zero-loading fallback and code ``NO_SOLUTION``.  'full': the first
+        sign change in ``[-pi/2, pi)``, as before the flow states existed (mirror roots with
+        ``W < 0`` are kept and flagged ``MIRROR_ROOT``).  See :mod:`bild_mdo.bem.flow_states`.
+    on_invalid : {'warn', 'raise', 'ignore'}
+        Stations in an invalid flow state (``NO_SOLUTION``, ``TURBULENT_WAKE``, ``MIRROR_ROOT``):
+        one :class:`~bild_mdo.bem.flow_states.BEMStateWarning` per run naming them (default),
+        ``om.AnalysisError`` naming them, or nothing.
 
     Inputs
     ------
@@ -43,7 +53,8 @@ class BEMAnalysisGroup(om.Group):
 
     Outputs
     -------
-    radii, dr, phi and the station outputs of
+    radii, dr, phi, flow_state (integer codes of :mod:`bild_mdo.bem.flow_states`; no derivatives)
+    and the station outputs of
     :class:`~bild_mdo.bem.loads.BladeElementLoadsComp` (nn, nr); the per-design
     outputs of :class:`~bild_mdo.bem.performance.RotorPerformanceComp` (nn,);
     rho, mu, speed_of_sound (nn,) with ``use_atmosphere``.
@@ -51,6 +62,7 @@ class BEMAnalysisGroup(om.Group):
 
     def initialize(self):
         declare_section_options(self.options)
+        declare_flow_state_options(self.options)
         self.options.declare("use_atmosphere", types=bool, default=True,
                              desc="compute rho and mu from the ISA at input altitude (else they are inputs)")
         self.options.declare("radial_fractions", default=None, allow_none=True,
@@ -74,11 +86,12 @@ class BEMAnalysisGroup(om.Group):
                                         width_fractions=opts["width_fractions"]),
                            promotes_inputs=["radius", "hub_radius"],
                            promotes_outputs=["radii", "dr"])
-        self.add_subsystem("inflow", InflowComp(**section),
+        self.add_subsystem("inflow", InflowComp(**section, solve_range=opts["solve_range"],
+                                                on_invalid=opts["on_invalid"]),
                            promotes_inputs=list(SECTION_INPUTS),
-                           promotes_outputs=["phi"])
+                           promotes_outputs=["phi", "flow_state"])
         self.add_subsystem("loads", BladeElementLoadsComp(**section),
-                           promotes_inputs=["phi"] + list(SECTION_INPUTS),
+                           promotes_inputs=["phi", "flow_state"] + list(SECTION_INPUTS),
                            promotes_outputs=list(SECTION_OUTPUTS))
         self.add_subsystem("performance",
                            RotorPerformanceComp(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"]),

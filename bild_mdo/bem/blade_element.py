@@ -32,7 +32,7 @@ import numpy as np
 
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.bem.inflow_residual import (force_coefficients, induced_velocities, inflow_residual,
-                                          inflow_residual_value)
+                                          inflow_residual_value, sign_of_sine)
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
@@ -81,17 +81,38 @@ def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_ra
         lam = v_axial[idx] / v_theta[idx]
         sig = sigma[idx]
         s, c = np.sin(phi), np.cos(phi)
+        sgn = sign_of_sine(phi)
+        abs_s = sgn * s
         c_x = pv.cl * c - pv.cd * s
         c_theta = pv.cl * s + pv.cd * c
-        value = lam * (sig * c_theta + 4.0 * F * s * c) + sig * c_x - 4.0 * F * s * s
-        d_explicit = (lam * (sig * c_x + 4.0 * F * (c * c - s * s)) - sig * c_theta
-                      - 8.0 * F * s * c)
+        value = lam * (sig * c_theta + 4.0 * F * abs_s * c) + sig * c_x - 4.0 * F * s * abs_s
+        d_explicit = (lam * (sig * c_x + 4.0 * F * sgn * (c * c - s * s)) - sig * c_theta
+                      - 8.0 * F * abs_s * c)
         d_cl = sig * (lam * s + c)
         d_cd = sig * (lam * c - s)
-        d_F = 4.0 * s * (lam * c - s)
+        d_F = 4.0 * abs_s * (lam * c - s)
         return value, d_explicit - d_cl * pv.dcl_dalpha - d_cd * pv.dcd_dalpha + d_F * dF_dphi
 
     return residual
+
+
+def denominator_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
+                         num_blades, polar, loss_model):
+    """A real ``admissible(phi, idx) -> bool`` over flat station indices: ``D > 0`` of Eq. (8), i.e. ``W > 0``.
+
+    Arguments as in :func:`residual_function`.
+    """
+    v_theta = rpm * RPM_TO_RAD_PER_S * radii
+    sigma = num_blades * chord / (2.0 * np.pi * radii)
+    reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
+
+    def admissible(phi, idx):
+        pv = polar.evaluate(twist[idx] - phi, reynolds[idx])
+        F = prandtl_loss(phi, radii[idx], radius[idx], hub_radius[idx], num_blades, loss_model).F
+        _, c_theta = force_coefficients(phi, pv.cl, pv.cd)
+        return 4.0 * F * (sign_of_sine(phi) * np.sin(phi)) * np.cos(phi) + sigma[idx] * c_theta > 0.0
+
+    return admissible
 
 
 def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope=2.0 * np.pi):
@@ -114,7 +135,7 @@ def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope
 
 
 def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
-                     num_blades, polar, loss_model, loads=True, partials=True):
+                     num_blades, polar, loss_model, loads=True, partials=True, unloaded=None):
     """Residual, aerodynamics and (optionally) loads at every station, with partials.
 
     Parameters
@@ -130,13 +151,18 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         Also compute induced velocities, inflow speed and loads.
     partials : bool
         Also compute the partials (else the second return value is empty).
+    unloaded : ndarray of bool, optional
+        Stations without a momentum solution (:data:`~bild_mdo.bem.flow_states.NO_SOLUTION`):
+        there the loads take CCBlade's "zero loading" values ``u_axial = V_x``,
+        ``u_theta = 0``, ``W = W0``, ``dT/dr = dQ/dr = 0`` (with their exact partials).
 
     Returns
     -------
     values : dict
         'residual', 'alpha', 'reynolds', 'lift_coefficient', 'drag_coefficient', 'loss_factor'
         and, with ``loads``,
-        'u_axial', 'u_theta', 'inflow_speed', 'dthrust_dr', 'dtorque_dr'.
+        'u_axial', 'u_theta', 'inflow_speed', 'dthrust_dr', 'dtorque_dr' and the
+        'denominator' ``D`` of Eq. (8) (``D > 0`` <=> ``W > 0``; no partials).
     partials : dict
         name -> {input name: array broadcastable to (nn, nr)} (real).
     """
@@ -156,8 +182,8 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
               "loss_factor": loss.F * ones}
     if loads:
         c_x, c_theta = force_coefficients(phi, pv.cl, pv.cd)
-        # Eq. (8) with F
-        denom = 4.0 * loss.F * np.sin(phi) * np.cos(phi) + sigma * c_theta
+        # Eq. (8) with F (mass flux rho |u_axial|: see bild_mdo.bem.inflow_residual)
+        denom = 4.0 * loss.F * (sign_of_sine(phi) * np.sin(phi)) * np.cos(phi) + sigma * c_theta
         u_axial = v_axial + v_theta * sigma * c_x / denom
         u_theta = 2.0 * v_theta * sigma * c_theta / denom
         # Eq. (7): W^2 = u_axial^2 + (V_theta - u_theta/2)^2
@@ -165,11 +191,25 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         # Eqs. (5), (6): dT/dr = 1/2 rho W^2 B c C_x, dQ/dr = 1/2 rho W^2 B c C_theta r
         q = 0.5 * rho * w2 * num_blades * chord
         values.update(u_axial=u_axial, u_theta=u_theta, inflow_speed=np.sqrt(w2),
-                      dthrust_dr=q * c_x, dtorque_dr=q * c_theta * radii)
+                      dthrust_dr=q * c_x, dtorque_dr=q * c_theta * radii, denominator=denom * ones)
+        if unloaded is not None and np.any(unloaded):
+            zero = 0.0 * ones
+            for name, value in (("u_axial", v_axial * ones), ("u_theta", zero), ("inflow_speed", w0 * ones),
+                                ("dthrust_dr", zero), ("dtorque_dr", zero)):
+                values[name] = np.where(unloaded, value, values[name])
     if not partials:
         return values, {}
-    return values, _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0,
-                                     reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones)
+    d = _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0,
+                          reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones)
+    if loads and unloaded is not None and np.any(unloaded):
+        d_w0 = _lin((_real(v_axial / w0), {"v_axial": ones}),
+                    (_real(v_theta / w0), {"rpm": RPM_TO_RAD_PER_S * _real(radii) * ones,
+                                           "radii": _real(omega) * ones}))
+        for name, fixed in (("u_axial", {"v_axial": ones}), ("u_theta", {}), ("inflow_speed", d_w0),
+                            ("dthrust_dr", {}), ("dtorque_dr", {})):
+            d[name] = {key: np.where(unloaded, fixed.get(key, 0.0), d[name].get(key, 0.0))
+                       for key in set(d[name]) | set(fixed)}
+    return values, d
 
 
 def _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu,

@@ -5,26 +5,41 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
-                                        evaluate_section, inflow_angle_guess, residual_function,
-                                        section_arguments, section_input_names)
-from bild_mdo.bem.root_finding import solve_bracketed
+                                        denominator_function, evaluate_section, inflow_angle_guess,
+                                        residual_function, section_arguments, section_input_names)
+from bild_mdo.bem.flow_states import (MIRROR_ROOT, NO_SOLUTION, PROPELLER, classify,
+                                      declare_flow_state_options, report_invalid)
+from bild_mdo.bem.inflow_residual import force_coefficients
+from bild_mdo.bem.root_finding import solve_bracketed, solve_physical
+from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 
 class InflowComp(om.ImplicitComponent):
-    """Inflow angle from the BEM residual with Prandtl loss (paper Eq. 9 generalised by F).
+    """Inflow angle from the BEM residual with Prandtl loss (paper Eq. 9 generalised by F), and the flow state.
 
-    ``R(phi) = (V_x/V_theta)(sigma C_theta + 4 F sin cos) + sigma C_x - 4 F sin^2 = 0``
-    at every station.  ``solve_nonlinear`` is the vectorised guaranteed-bracket
-    solve of :mod:`bild_mdo.bem.root_finding` (Ning 2014); under complex step it
-    adds one complex Newton update (:func:`~bild_mdo.utils.newton.complex_step_update`)
-    so the imaginary part carries the exact derivative.  The state Jacobian is diagonal: ``solve_linear`` divides.
-    Inputs outside the model's domain (``v_axial < 0``, non-positive rpm, chord,
-    radii, rho or mu) and stations without a bracket raise ``om.AnalysisError``.
+    ``R(phi) = (V_x/V_theta)(sigma C_theta + 4 F |sin| cos) + sigma C_x - 4 F sin |sin| = 0``
+    at every station (:mod:`bild_mdo.bem.inflow_residual`).  ``solve_nonlinear`` is a vectorised
+    guaranteed-bracket solve (Ning 2014): with ``solve_range='physical'`` (default)
+    :func:`~bild_mdo.bem.root_finding.solve_physical`, CCBlade.jl's region order accepting only
+    roots with ``W > 0``; with ``'full'`` :func:`~bild_mdo.bem.root_finding.solve_bracketed`,
+    the first sign change anywhere in ``[-pi/2, pi)`` (a root with ``W < 0`` is kept and flagged
+    :data:`~bild_mdo.bem.flow_states.MIRROR_ROOT`).  Each station is then classified
+    (:func:`~bild_mdo.bem.flow_states.classify`).  Where it has no momentum solution
+    (:data:`~bild_mdo.bem.flow_states.NO_SOLUTION`) the state equation becomes
+    ``phi = atan2(V_x, Omega r)`` (CCBlade's zero-loading fallback; the loads component then
+    returns zero loads), so the outputs and their derivatives stay defined.  Invalid stations
+    (:data:`~bild_mdo.bem.flow_states.INVALID_STATES`) are reported as ``on_invalid`` says.
+
+    Under complex step the solve adds one complex Newton update
+    (:func:`~bild_mdo.utils.newton.complex_step_update`) so the imaginary part carries the exact
+    derivative.  The state Jacobian is diagonal: ``solve_linear`` divides.  Inputs outside the
+    model's domain (``v_axial < 0``, non-positive rpm, chord, radii, rho or mu) raise ``om.AnalysisError``.
 
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
-    :func:`~bild_mdo.bem.blade_element.declare_section_options`.
+    :func:`~bild_mdo.bem.blade_element.declare_section_options`; ``solve_range`` ('physical' or
+    'full') and ``on_invalid`` ('warn', 'raise' or 'ignore').
 
     Inputs
     ------
@@ -36,22 +51,31 @@ class InflowComp(om.ImplicitComponent):
     -------
     phi[nn, nr] (rad)
         Inflow angle (implicit state).
+    flow_state[nn, nr]
+        Flow-state code of :mod:`bild_mdo.bem.flow_states` (integer values; no derivatives).
     """
 
     def initialize(self):
         declare_section_options(self.options)
+        declare_flow_state_options(self.options)
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
         add_section_inputs(self)
         self.add_output("phi", val=np.full((nn, nr), 0.2), units="rad", desc="inflow angle")
+        self.add_output("flow_state", val=np.full((nn, nr), float(PROPELLER)),
+                        desc="flow-state code (bild_mdo.bem.flow_states)")
         self._dR_dphi = np.ones((nn, nr))
+        self._state = np.full((nn, nr), PROPELLER)
+        self._unloaded = np.zeros((nn, nr), dtype=bool)
 
     def setup_partials(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
         rows_s, cols_s = dist_wrt_dist(nn, nr)
         rows_n, cols_n = dist_wrt_node(nn, nr)
         self.declare_partials("phi", "phi", rows=rows_s, cols=cols_s)
+        # The flow state is a label fixed by the solve: its residual is flow_state - label.
+        self.declare_partials("flow_state", "flow_state", rows=rows_s, cols=cols_s, val=1.0)
         for name in section_input_names(self.options["loss_model"]):
             if name in NODE_INPUTS:
                 self.declare_partials("phi", name, rows=rows_n, cols=cols_n)
@@ -69,10 +93,26 @@ class InflowComp(om.ImplicitComponent):
                     f"chord = {np.real(inputs['chord'][node, station]):.6g} m) of {self.pathname}")
         return describe
 
+    def _fallback_angle(self, inputs):
+        """``atan2(V_x, Omega r)`` (complex-safe: ``Omega r > 0``) and its partials, shape (nn, nr)."""
+        v_x = inputs["v_axial"][:, None]
+        omega = inputs["rpm"][:, None] * RPM_TO_RAD_PER_S
+        v_theta = omega * inputs["radii"]
+        angle = np.arctan(v_x / v_theta)
+        v_x, omega, v_theta = np.real(v_x), np.real(omega), np.real(v_theta)
+        w2 = v_x**2 + v_theta**2
+        d_vtheta = -v_x / w2
+        return angle, {"v_axial": v_theta / w2, "rpm": d_vtheta * RPM_TO_RAD_PER_S * np.real(inputs["radii"]),
+                       "radii": d_vtheta * omega}
+
     def apply_nonlinear(self, inputs, outputs, residuals):
         values, _ = evaluate_section(outputs["phi"], loads=False, partials=False,
                                      **section_arguments(inputs, self.options))
-        residuals["phi"] = values["residual"]
+        residual = values["residual"]
+        if np.any(self._unloaded):
+            residual = np.where(self._unloaded, outputs["phi"] - self._fallback_angle(inputs)[0], residual)
+        residuals["phi"] = residual
+        residuals["flow_state"] = outputs["flow_state"] - self._state
 
     def _check_domain(self, inputs):
         """The momentum model needs V_x >= 0, rpm > 0 and positive geometry (else AnalysisError)."""
@@ -95,32 +135,66 @@ class InflowComp(om.ImplicitComponent):
         def flat(name):
             return np.broadcast_to(np.real(inputs[name]).reshape(nn, -1), shape).ravel()
 
-        residual = residual_function(
-            **{name: flat(name) for name in NODE_INPUTS + ("radii", "chord", "twist")},
-            num_blades=self.options["num_blades"], polar=self.options["polar"],
-            loss_model=self.options["loss_model"])
+        kernels = {name: flat(name) for name in NODE_INPUTS + ("radii", "chord", "twist")}
+        kernels.update(num_blades=self.options["num_blades"], polar=self.options["polar"],
+                       loss_model=self.options["loss_model"])
+        residual = residual_function(**kernels)
         guess = inflow_angle_guess(flat("v_axial"), flat("rpm"), flat("radii"), flat("chord"), flat("twist"),
                                    self.options["num_blades"])
-        phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs),
-                              initial_guess=guess).reshape(shape)
+        if self.options["solve_range"] == "physical":
+            phi, found = solve_physical(residual, denominator_function(**kernels), flat("v_axial") > 0.0,
+                                        describe=self._describe(inputs), initial_guess=guess)
+        else:
+            phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs), initial_guess=guess)
+            found = np.ones(nn * nr, dtype=bool)
+        phi, found = phi.reshape(shape), found.reshape(shape)
+        real_inputs = {name: np.real(inputs[name]) for name in NODE_INPUTS + ("radii", "chord", "twist")}
+        fallback = np.real(self._fallback_angle(real_inputs)[0])
+        phi = np.where(found, phi, fallback)
+        self._state, self._unloaded = self._classify(phi, found, real_inputs)
+        phi = np.where(self._unloaded, fallback, phi)
+        report_invalid(self._state, self.options["on_invalid"],
+                       r_over_r=real_inputs["radii"] / real_inputs["radius"][:, None])
         if np.iscomplexobj(outputs["phi"]):
             kw = section_arguments(inputs, self.options)
             values, partials = evaluate_section(phi, loads=False, **kw)
             dR_dphi = np.broadcast_to(partials["residual"]["phi"], shape)
-            phi = complex_step_update(phi, values["residual"], dR_dphi)
+            phi = np.where(self._unloaded, self._fallback_angle(inputs)[0],
+                           complex_step_update(phi, values["residual"], dR_dphi))
         outputs["phi"] = phi
+        outputs["flow_state"] = self._state
+
+    def _classify(self, phi, found, inputs):
+        """Flow-state codes and the stations that get the zero-loading fallback."""
+        values, _ = evaluate_section(phi, partials=False, **section_arguments(inputs, self.options))
+        c_x, c_theta = force_coefficients(phi, values["lift_coefficient"], values["drag_coefficient"])
+        admissible = found & (values["denominator"] > 0.0)
+        v_axial = inputs["v_axial"][:, None]
+        if self.options["solve_range"] == "physical":
+            state = classify(c_x, c_theta, v_axial, values["u_axial"], admissible)
+        else:
+            state = classify(c_x, c_theta, v_axial, values["u_axial"], found)
+            state = np.where(found & ~admissible, MIRROR_ROOT, state)
+        return state, state == NO_SOLUTION
 
     def linearize(self, inputs, outputs, jacobian):
         _, d = evaluate_section(outputs["phi"], loads=False, **section_arguments(inputs, self.options))
         shape = outputs["phi"].shape
         d_res = d["residual"]
+        unloaded = self._unloaded
+        d_fallback = self._fallback_angle(inputs)[1] if np.any(unloaded) else {}
         for name in ["phi"] + section_input_names(self.options["loss_model"]):
-            jacobian["phi", name] = np.broadcast_to(d_res[name], shape).ravel()
-        self._dR_dphi = np.broadcast_to(d_res["phi"], shape).copy()
+            value = np.broadcast_to(d_res[name], shape)
+            if np.any(unloaded):
+                value = np.where(unloaded, 1.0 if name == "phi" else -d_fallback.get(name, 0.0), value)
+            jacobian["phi", name] = value.ravel()
+        self._dR_dphi = np.where(unloaded, 1.0, np.broadcast_to(d_res["phi"], shape))
 
     def solve_linear(self, d_outputs, d_residuals, mode):
         if mode == "fwd":
             d_outputs["phi"] = d_residuals["phi"] / self._dR_dphi
+            d_outputs["flow_state"] = d_residuals["flow_state"]
         else:
             d_residuals["phi"] = d_outputs["phi"] / self._dR_dphi
+            d_residuals["flow_state"] = d_outputs["flow_state"]
 

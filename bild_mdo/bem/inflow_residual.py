@@ -6,12 +6,20 @@ equating the momentum thrust and torque (Eqs. 1, 2, both multiplied by ``F``)
 with the blade-element ones (Eqs. 5, 6) and closing with the inflow geometry
 ``tan(phi) = u_axial / (V_theta - u_theta/2)`` gives Eq. (9) generalised by ``F``:
 
-    R(phi) = (V_x/V_theta) (sigma C_theta + 4 F sin cos) + sigma C_x - 4 F sin^2
+    R(phi) = (V_x/V_theta) (sigma C_theta + 4 F |sin| cos) + sigma C_x - 4 F sin |sin|
 
 and the induced velocities (Eq. 8 with ``F``):
 
     u_theta = 2 sigma C_theta V_theta / D,   u_axial = V_x + sigma C_x V_theta / D,
-    D = 4 F sin(phi) cos(phi) + sigma C_theta.
+    D = 4 F |sin(phi)| cos(phi) + sigma C_theta.
+
+The momentum terms carry the mass flux ``rho |u_axial|`` (``F -> F sgn(sin phi)``), as
+CCBlade.jl and AeroDyn do: for ``0 < phi < pi`` this is Eq. (9) unchanged; for ``phi < 0`` (flow
+reversed through the annulus) it is the momentum balance of that reversed flow, and in hover its
+root is the exact mirror image of a normal hovering annulus.  ``D > 0`` is equivalent to
+``W > 0`` (``tan phi = u_axial / (V_theta - u_theta/2)`` holds at every root, so only the sign
+of ``W`` can be wrong): a root with ``D <= 0`` is the 180-deg mirror image of a real flow
+(:mod:`bild_mdo.bem.flow_states`).
 
 Both forms stay regular at ``V_x = 0`` (hover).  The functions below take
 ``cl``, ``cd`` and ``F`` as independent arguments, so callers chain in their
@@ -100,11 +108,17 @@ def force_coefficients(phi, cl, cd):
     return cl * c - cd * s, cl * s + cd * c
 
 
+def sign_of_sine(phi):
+    """``sgn(sin phi)`` of the real part, +1 at ``sin phi = 0`` (the mass-flux sign of the momentum terms)."""
+    return np.where(np.real(np.sin(phi)) < 0.0, -1.0, 1.0)
+
+
 def _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
     s, c = np.sin(phi), np.cos(phi)
+    abs_s = sign_of_sine(phi) * s
     c_x, c_theta = cl * c - cd * s, cl * s + cd * c
     lam = v_axial / v_theta
-    return lam * (sigma * c_theta + 4.0 * F * s * c) + sigma * c_x - 4.0 * F * s * s
+    return lam * (sigma * c_theta + 4.0 * F * abs_s * c) + sigma * c_x - 4.0 * F * s * abs_s
 
 
 def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
@@ -132,20 +146,23 @@ def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
     value = _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
     phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
     s, c = np.sin(phi), np.cos(phi)
+    sgn = sign_of_sine(phi)
+    abs_s = sgn * s
     c_x, c_theta = cl * c - cd * s, cl * s + cd * c
     lam = v_axial / v_theta
-    bracket = sigma * c_theta + 4.0 * F * s * c
+    bracket = sigma * c_theta + 4.0 * F * abs_s * c
     shape = np.broadcast(value, phi).shape
+    # d(|s| c)/dphi = sgn cos(2 phi), d(s |s|)/dphi = sgn sin(2 phi)
     return InflowResidual(
         residual=value,
-        dR_dphi=np.broadcast_to(lam * (sigma * c_x + 4.0 * F * np.cos(2.0 * phi))
-                                - sigma * c_theta - 4.0 * F * np.sin(2.0 * phi), shape),
+        dR_dphi=np.broadcast_to(lam * (sigma * c_x + 4.0 * F * sgn * np.cos(2.0 * phi))
+                                - sigma * c_theta - 4.0 * F * sgn * np.sin(2.0 * phi), shape),
         dR_dv_axial=np.broadcast_to(bracket / v_theta, shape),
         dR_dv_theta=np.broadcast_to(-lam * bracket / v_theta, shape),
         dR_dsigma=np.broadcast_to(lam * c_theta + c_x, shape),
         dR_dcl=np.broadcast_to(sigma * (lam * s + c), shape),
         dR_dcd=np.broadcast_to(sigma * (lam * c - s), shape),
-        dR_dF=np.broadcast_to(4.0 * s * (lam * c - s), shape),
+        dR_dF=np.broadcast_to(4.0 * abs_s * (lam * c - s), shape),
     )
 
 
@@ -155,11 +172,11 @@ def inflow_residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
 
 
 def _eq8_terms(phi, sigma, cl, cd, F):
-    """``sin, cos, C_x, C_theta`` and the terms ``P = 4 F sin cos``, ``N = sigma C_theta``,
+    """``sin, cos, C_x, C_theta`` and the terms ``P = 4 F |sin| cos``, ``N = sigma C_theta``,
     ``M = sigma C_x``, ``D = P + N`` of Eq. (8)."""
     s, c = np.sin(phi), np.cos(phi)
     c_x, c_theta = cl * c - cd * s, cl * s + cd * c
-    P = 4.0 * F * s * c
+    P = 4.0 * F * (sign_of_sine(phi) * s) * c
     N = sigma * c_theta
     M = sigma * c_x
     return s, c, c_x, c_theta, P, N, M, P + N
@@ -175,7 +192,7 @@ def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
     InducedVelocities
         ``u_axial = V_x + sigma C_x V_theta / D`` and
         ``u_theta = 2 sigma C_theta V_theta / D`` with
-        ``D = 4 F sin(phi) cos(phi) + sigma C_theta``.
+        ``D = 4 F |sin(phi)| cos(phi) + sigma C_theta`` (``D > 0`` <=> ``W > 0``).
     """
     _, _, _, _, P, N, M, D = _eq8_terms(phi, sigma, cl, cd, F)
     u_theta = 2.0 * v_theta * N / D
@@ -187,7 +204,8 @@ def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
     shape = np.broadcast(u_axial, u_theta, phi).shape
 
     # Intermediate partials: P(phi, F), N(phi, sigma, cl, cd), M(phi, sigma, cl, cd).
-    dP_dphi, dP_dF = 4.0 * F * np.cos(2.0 * phi), 4.0 * s * c
+    sgn = sign_of_sine(phi)
+    dP_dphi, dP_dF = 4.0 * F * sgn * np.cos(2.0 * phi), 4.0 * (sgn * s) * c
     dN_dphi, dN_dsigma, dN_dcl, dN_dcd = sigma * c_x, c_theta, sigma * s, sigma * c
     dM_dphi, dM_dsigma, dM_dcl, dM_dcd = -sigma * c_theta, c_x, sigma * c, -sigma * s
 

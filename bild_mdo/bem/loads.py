@@ -6,6 +6,7 @@ import openmdao.api as om
 
 from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
                                         evaluate_section, section_arguments, section_input_names)
+from bild_mdo.bem.flow_states import NO_SOLUTION, PROPELLER
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 #: Station outputs: name -> (units, description).
@@ -28,7 +29,10 @@ class BladeElementLoadsComp(om.ExplicitComponent):
 
     ``dT/dr = 1/2 rho W^2 B c C_x`` and ``dQ/dr = 1/2 rho W^2 B c C_theta r`` with
     ``W^2 = u_axial^2 + (V_theta - u_theta/2)^2`` and ``u_axial, u_theta`` from
-    Eq. (8) with the Prandtl factor.  At the converged ``phi`` these equal the
+    Eq. (8) with the Prandtl factor.  At stations without a momentum solution (input
+    ``flow_state`` equal to :data:`~bild_mdo.bem.flow_states.NO_SOLUTION`) the loads are CCBlade's
+    "zero loading" fallback: ``u_axial = V_x``, ``u_theta = 0``, ``W = sqrt(V_x^2 + V_theta^2)``,
+    ``dT/dr = dQ/dr = 0``.  At the converged ``phi`` these equal the
     momentum loads ``4 pi rho u_axial (u_axial - V_x) r F`` and
     ``2 pi rho u_axial u_theta r^2 F`` (:class:`~bild_mdo.bild.momentum_loads.MomentumLoadsComp`).
 
@@ -37,8 +41,8 @@ class BladeElementLoadsComp(om.ExplicitComponent):
 
     Inputs
     ------
-    phi[nn, nr] (rad)
-        Inflow angle, and the blade-element inputs
+    phi[nn, nr] (rad), flow_state[nn, nr]
+        Inflow angle and flow-state code, and the blade-element inputs
         (:data:`~bild_mdo.bem.blade_element.SECTION_INPUTS`).
 
     Outputs
@@ -54,6 +58,8 @@ class BladeElementLoadsComp(om.ExplicitComponent):
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
         self.add_input("phi", val=np.full((nn, nr), 0.2), units="rad", desc="inflow angle")
+        self.add_input("flow_state", val=np.full((nn, nr), float(PROPELLER)),
+                       desc="flow-state code (bild_mdo.bem.flow_states); no derivatives")
         add_section_inputs(self)
         for name, (units, desc) in SECTION_OUTPUTS.items():
             self.add_output(name, val=np.ones((nn, nr)), units=units, desc=desc)
@@ -84,14 +90,19 @@ class BladeElementLoadsComp(om.ExplicitComponent):
                 else:
                     self.declare_partials(out, name, rows=rows_s, cols=cols_s)
 
+    @staticmethod
+    def _unloaded(inputs):
+        return np.real(inputs["flow_state"]) == NO_SOLUTION
+
     def compute(self, inputs, outputs):
-        values, _ = evaluate_section(inputs["phi"], partials=False,
+        values, _ = evaluate_section(inputs["phi"], partials=False, unloaded=self._unloaded(inputs),
                                      **section_arguments(inputs, self.options))
         for name in SECTION_OUTPUTS:
             outputs[name] = values[name]
 
     def compute_partials(self, inputs, partials):
-        _, d = evaluate_section(inputs["phi"], **section_arguments(inputs, self.options))
+        _, d = evaluate_section(inputs["phi"], unloaded=self._unloaded(inputs),
+                                **section_arguments(inputs, self.options))
         shape = inputs["phi"].shape
         for out in SECTION_OUTPUTS:
             for name in self._dependencies(out):

@@ -10,7 +10,10 @@ whose end points have opposite signs:
 2. ``[-pi/4, -eps]``      (windmill / propeller-brake with negative inflow angle),
 3. ``[pi/2, pi - eps]``   (propeller-brake with reversed tangential flow),
 
-and, as a last resort, a scan of ``[-pi/2, pi - eps]`` for any sign change.
+and, as a last resort, a scan of ``[-pi/2, pi - eps]`` for any sign change
+(:func:`solve_bracketed`: BILD's reference station, and the BEM analysis with
+``solve_range='full'``).  The BEM analysis by default uses :func:`solve_physical`:
+CCBlade.jl's region order, accepting only kinematically consistent roots (``W > 0``).
 Inside the bracket the package's one safeguarded Newton solver
 (:func:`bild_mdo.utils.newton.bracketed_newton`) converges to round-off.
 
@@ -140,6 +143,124 @@ def _check_finite(values, idx, phi, describe):
         raise om.AnalysisError(
             f"BEM inflow solve: the residual is not finite at phi = {phi_bad:.6g} rad at "
             f"{describe(idx[first])}; check the inputs (chord, radii, rpm) and the polar.")
+
+
+#: Physical search regions (CCBlade.jl's quadrants for V_x >= 0, Omega > 0, in its order):
+#: Q1 (flow through the disk from ahead), Q2 (flow reversed through the disk), Q3 (tangential
+#: flow reversed, ``W_theta < 0``; searched only for ``V_x > 0``).
+PHYSICAL_REGIONS = ((BRACKET_EPS, 0.5 * np.pi), (-0.5 * np.pi, -BRACKET_EPS), (0.5 * np.pi, np.pi - BRACKET_EPS))
+
+
+def _solve_in(residual, idx, lo, hi, r_lo, r_hi, guess, describe, tol, max_iter):
+    """Safeguarded Newton solve at stations ``idx`` inside brackets ``[lo, hi]``; AnalysisError if not converged."""
+    x0 = false_position(lo, hi, r_lo, r_hi)
+    if guess is not None:
+        g = guess[idx]
+        x0 = np.where((g - lo) * (g - hi) < 0.0, g, x0)
+    result = bracketed_newton(lambda x, i: residual(x, idx[i]), lo, hi, r_lo, x0, atol=tol, max_iter=max_iter)
+    first = result.first_failure()
+    if first is not None:
+        _check_finite(result.residual, idx, result.x, describe)
+        raise om.AnalysisError(
+            f"BEM inflow solve did not converge in {max_iter} iterations at {describe(idx[first])} "
+            f"({np.count_nonzero(~result.converged)} station(s) in all); |R| = {np.abs(result.residual[first]):.3e}.")
+    return result.x
+
+
+def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,
+                   initial_guess=None):
+    """Solve ``R(phi) = 0`` for a physical (admissible) root at every station, in CCBlade.jl's order.
+
+    Regions are tried in the order of :data:`PHYSICAL_REGIONS` (Q3 only where ``forward``), each by
+    the signs at its end points; a root is accepted only where ``admissible(phi, idx)`` holds
+    (``W > 0``: roots with ``W < 0`` are 180-deg mirror images of a real flow).  In forward
+    flight, where Q1 has the same sign at both ends, Q1 is scanned on a grid before Q2 and the
+    sign change at the largest phi is taken (the momentum branch with the smaller induction).
+    Stations left over are scanned on a grid over the regions for the first sign change with
+    admissible end points.  In hover this reduces to Q1 where ``c_l(twist) > 0`` and Q2 otherwise (the
+    residual at ``phi -> 0`` is ``sigma c_l(twist)``; at ``-pi/2`` and ``pi/2`` it is
+    ``+-(sigma c_d + 4F)``), so a hover station always has a root.
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(phi, idx) -> (R, dR_dphi)`` (see :func:`solve_bracketed`).
+    admissible : callable
+        ``admissible(phi, idx) -> bool array``.
+    forward : ndarray of bool
+        ``V_x > 0`` per station, shape ``(size,)``.
+    describe, tol, max_iter, initial_guess
+        As in :func:`solve_bracketed`.
+
+    Returns
+    -------
+    phi : ndarray
+        Inflow angles (rad); NaN where no admissible root exists.
+    found : ndarray of bool
+        Where an admissible root was found.
+    """
+    forward = np.asarray(forward, dtype=bool)
+    size = forward.size
+    describe = describe or _default_describe((size,))
+    guess = None if initial_guess is None else np.broadcast_to(np.asarray(initial_guess, dtype=float), (size,))
+    phi = np.full(size, np.nan)
+    found = np.zeros(size, dtype=bool)
+    args = (residual, admissible, phi, found, describe, tol, max_iter)
+    for k, (a, b) in enumerate(PHYSICAL_REGIONS):
+        todo = np.flatnonzero(~found)
+        idx = todo[forward[todo]] if k == 2 else todo
+        if idx.size == 0:
+            continue
+        ra = residual(np.full(idx.size, a), idx)[0]
+        rb = residual(np.full(idx.size, b), idx)[0]
+        _check_finite(ra, idx, a, describe)
+        _check_finite(rb, idx, b, describe)
+        ok = ra * rb <= 0.0
+        if np.any(ok):
+            sel = idx[ok]
+            x = _solve_in(residual, sel, np.full(sel.size, a), np.full(sel.size, b), ra[ok], rb[ok], guess,
+                          describe, tol, max_iter)
+            good = admissible(x, sel)
+            phi[sel[good]] = x[good]
+            found[sel[good]] = True
+        if k == 0:
+            # Same signs at both ends of Q1 in forward flight: an even number of roots there, typically
+            # the two momentum branches of an annulus that extracts power (a < 1/2 and a > 1/2 for the
+            # same loading).  The largest phi has the smallest induction: the momentum-valid branch.
+            todo = np.flatnonzero(~found & forward)
+            if todo.size:
+                _scan_admissible(*args, todo, _Q1_SCAN, last=True)
+    todo = np.flatnonzero(~found)
+    if todo.size:
+        _scan_admissible(*args, todo, _SCAN, last=False, allowed=forward[todo][:, None] | (_SCAN < 0.5 * np.pi))
+    return phi, found
+
+
+_Q1_SCAN = np.linspace(BRACKET_EPS, 0.5 * np.pi, 31)
+
+
+def _scan_admissible(residual, admissible, phi, found, describe, tol, max_iter, todo, grid, last, allowed=True):
+    """Solve in the first (or last) grid interval with a sign change and admissible end points (in place)."""
+    n = todo.size
+    stations = np.repeat(todo, grid.size)
+    x = np.broadcast_to(grid, (n, grid.size)).ravel()
+    values = residual(x, stations)[0]
+    _check_finite(values, stations, x, describe)
+    values = values.reshape(n, grid.size)
+    ok_end = admissible(x, stations).reshape(n, grid.size) & allowed
+    change = (values[:, :-1] * values[:, 1:] <= 0.0) & ok_end[:, :-1] & ok_end[:, 1:]
+    change &= np.broadcast_to(np.diff(np.sign(grid)) == 0, change.shape)   # never across phi = 0
+    has = change.any(axis=1)
+    if not np.any(has):
+        return
+    rows = np.flatnonzero(has)
+    first = (grid.size - 2 - np.argmax(change[:, ::-1], axis=1) if last else np.argmax(change, axis=1))[has]
+    sel = todo[has]
+    xr = _solve_in(residual, sel, grid[first], grid[first + 1], values[rows, first], values[rows, first + 1],
+                   None, describe, tol, max_iter)
+    good = admissible(xr, sel)
+    phi[sel[good]] = xr[good]
+    found[sel[good]] = True
 
 
 def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,

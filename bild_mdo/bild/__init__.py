@@ -8,6 +8,7 @@ from bild_mdo.bild.advance_ratio import AdvanceRatioComp
 from bild_mdo.bild.bild_group import BILDGroup
 from bild_mdo.bild.chord import ChordComp
 from bild_mdo.bild.eta2 import Eta2Comp
+from bild_mdo.bild.feasibility import FeasibilityComp, FeasibilityLedger
 from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
@@ -25,6 +26,8 @@ __all__ = [
     "BILDGroup",
     "ChordComp",
     "Eta2Comp",
+    "FeasibilityComp",
+    "FeasibilityLedger",
     "GeometryComp",
     "IdealLoadingComp",
     "InducedVelocityComp",

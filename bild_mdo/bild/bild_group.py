@@ -13,6 +13,7 @@ from bild_mdo.bem.stations import StationsComp
 from bild_mdo.bild.advance_ratio import AdvanceRatioComp
 from bild_mdo.bild.chord import CHORD_FORMS, ChordComp
 from bild_mdo.bild.eta2 import Eta2Comp
+from bild_mdo.bild.feasibility import ON_INFEASIBLE, FeasibilityComp, FeasibilityLedger
 from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
@@ -64,25 +65,38 @@ class BILDGroup(om.Group):
         chord                       Eq. (31) (or the torque form)                       step 7
         root_chord_correction       Eq. (32) (optional)
         performance                 T, Q, P, eta, FM, C_T, C_Q, C_P, E, sigma_r, C_T/sigma_r (Table 2)
+        feasibility_check           feasible (1/0); one error for every infeasible node
 
     The thrust and torque are those of the ideal loading; the root-chord
     correction changes only the chord (and with it the solidity), as in the
     paper's Sec. 5.2.2.
 
-    Limits of the ideal loading:
+    Limits of the ideal loading (infeasible designs):
 
     * Hover: a station where ``lambda <= V_theta / (2 L/D)`` (``lambda`` of
       Eq. (22), ``L/D = C_l*/C_d*``) cannot be loaded; it gets ``eta2 = 1``,
       no induction and zero chord.  This is the continuous limit
       ``V_x -> 0+`` of the quartic root, not a special case.  If every
-      station is unloaded the rotor has no torque and the performance
-      component raises :class:`openmdao.api.AnalysisError`.
+      station is unloaded the rotor has no torque: infeasible.
+    * The reference station must produce thrust and not be overloaded
+      (Assumption 3 at ``r_ref``: ``u_axial_ref > V_x``, ``0 < u_theta_ref <
+      V_theta_ref``; remedies: a smaller ``ref_chord`` or advance ratio).
     * Forward flight: every station must produce thrust (Assumption 3,
       ``u_axial > V_x``), which needs ``V_x < eta2 V_theta C_l*/C_d*``.  Inboard
-      stations at a high advance ratio with a low-L/D airfoil break it;
-      ``induced_velocity`` then raises :class:`openmdao.api.AnalysisError`
-      naming the node and station (remedies: a larger ``hub_radius_ratio``, a
-      lower advance ratio / ``V_x``, or an airfoil with a higher L/D).
+      stations at a high advance ratio with a low-L/D airfoil break it
+      (remedies: a larger ``hub_radius_ratio``, a lower advance ratio /
+      ``V_x``, or an airfoil with a higher L/D).
+
+    The checks run vectorised in the components, which record the failing
+    nodes in the group's :attr:`feasibility` ledger
+    (:class:`~bild_mdo.bild.feasibility.FeasibilityLedger`) and give them
+    finite placeholder values, so one run finds every infeasible node.  The
+    last component then raises ONE :class:`openmdao.api.AnalysisError`
+    listing every infeasible node with its reason
+    (``on_infeasible='raise'``, default) or only sets the output
+    ``feasible`` to 0 there (``'flag'``; the other outputs of those nodes are
+    placeholders without meaning).  A feasible node's outputs do not depend
+    on the other nodes of the batch.
     * User stations (``radial_fractions``) must lie on the blade outside the
       hub (see :class:`~bild_mdo.bem.stations.StationsComp`).
 
@@ -105,6 +119,8 @@ class BILDGroup(om.Group):
         ``'v_axial'`` (default): the axial velocity is an input;
         ``'advance_ratio'``: the advance ratio ``J = V_x/(n D)`` is, as in the
         paper's Algorithm 1.
+    on_infeasible : str
+        ``'raise'`` (default) or ``'flag'``: see above.
     radial_fractions, width_fractions : array_like or None
         User stations ``r/R`` and widths ``dr/R`` (shape ``(nr,)`` or
         ``(nn, nr)``), see :class:`~bild_mdo.bem.stations.StationsComp`;
@@ -137,6 +153,8 @@ class BILDGroup(om.Group):
     thrust, torque, power, efficiency, figure_of_merit, thrust_coefficient,
     torque_coefficient, power_coefficient, energy_loss, solidity, blade_loading : [nn]
         Performance (Table 2).
+    feasible : [nn]
+        1.0 where the design is feasible, 0.0 where it is not (``'flag'`` mode).
     alpha_star, cl_star, cd_star, reynolds_ref, phi_ref, u_axial_ref, u_theta_ref,
     ideal_loading_constant, v_axial (advance-ratio mode), rho, mu : [nn]
         Intermediate per-design quantities.
@@ -156,6 +174,8 @@ class BILDGroup(om.Group):
                              desc="k of the root-chord correction Eq. (32) on r/R; None for no correction")
         self.options.declare("input_mode", default="v_axial", values=INPUT_MODES,
                              desc="operating-condition input: 'v_axial' (m/s) or 'advance_ratio' J")
+        self.options.declare("on_infeasible", default="raise", values=ON_INFEASIBLE,
+                             desc="'raise': one AnalysisError naming every infeasible node; 'flag': output feasible")
         self.options.declare("radial_fractions", default=None, allow_none=True,
                              desc="user station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
         self.options.declare("width_fractions", default=None, allow_none=True,
@@ -169,6 +189,9 @@ class BILDGroup(om.Group):
         size = dict(num_nodes=nn, num_radial=nr)
         polar = default_polar() if opts["polar"] is None else opts["polar"]
         loss = dict(num_blades=b, loss_model=opts["loss_model"])
+        #: Infeasible nodes found by the checks of the last run (read it after run_model).
+        self.feasibility = FeasibilityLedger(nn)
+        checked = dict(feasibility=self.feasibility)
 
         self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
                            promotes_outputs=["rho", "mu"])
@@ -192,24 +215,24 @@ class BILDGroup(om.Group):
         self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
                            promotes_inputs=["phi_ref"] + list(REFERENCE_INPUTS),
                            promotes_outputs=["u_axial_ref", "u_theta_ref"])
-        self.add_subsystem("ideal_loading", IdealLoadingComp(**node),
+        self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
                            promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
                            promotes_outputs=["ideal_loading_constant"])
-        self.add_subsystem("eta2", Eta2Comp(**size),
+        self.add_subsystem("eta2", Eta2Comp(**size, **checked),
                            promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
                            promotes_outputs=["eta2"])
-        self.add_subsystem("induced_velocity", InducedVelocityComp(**size),
+        self.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked),
                            promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
                            promotes_outputs=["u_axial", "u_theta"])
-        self.add_subsystem("inflow_angle", InflowAngleComp(**size),
+        self.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked),
                            promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
                            promotes_outputs=["phi", "inflow_speed", "twist"])
-        self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss),
+        self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
                            promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
                                             "hub_radius"],
                            promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
         chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
-        self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"]),
+        self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked),
                            promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
                            promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
         self.add_subsystem("root_chord_correction",
@@ -220,6 +243,9 @@ class BILDGroup(om.Group):
                            promotes_inputs=["dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm",
                                             "radius", "rho"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
+        self.add_subsystem("feasibility_check", FeasibilityComp(**node, ledger=self.feasibility,
+                                                          on_infeasible=opts["on_infeasible"]),
+                           promotes_outputs=["feasible"])
 
         if opts["input_mode"] == "advance_ratio":
             self.set_input_defaults("advance_ratio", val=np.zeros(nn), units=None)

@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -23,7 +24,12 @@ class ChordComp(om.ExplicitComponent):
     Eq. (25), which Eq. (26) guarantees; the option exists to check that and
     to choose the better-conditioned one.  An unloaded station (zero load)
     gets zero chord: ``C_x`` and ``C_theta`` stay positive for
-    ``0 <= phi < atan(C_l/C_d)``, so no division by zero occurs.
+    ``0 <= phi < atan(C_l/C_d)``, so no division by zero occurs.  Where the
+    coefficient is not positive the compute raises
+    :class:`openmdao.api.AnalysisError` naming every failing node (inside a
+    :class:`~bild_mdo.bild.bild_group.BILDGroup` the nodes are recorded in the
+    group's feasibility ledger and their chord is a placeholder computed with
+    the coefficient set to 1, partials consistent with it).
 
     The section's lift and drag coefficients (the constant ``C_l*``, ``C_d*``
     of Assumption 2) are also given as distributions for plotting.
@@ -34,6 +40,8 @@ class ChordComp(om.ExplicitComponent):
         Sizes (:func:`~bild_mdo.utils.options.declare_size_options`) and the number of blades B.
     chord_form : str
         ``'thrust'`` (Eq. (31), default) or ``'torque'``.
+    feasibility : FeasibilityLedger or None
+        See :func:`~bild_mdo.bild.feasibility.declare_feasibility_option`.
 
     Inputs
     ------
@@ -62,6 +70,7 @@ class ChordComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_size_options(self.options)
+        declare_feasibility_option(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("chord_form", default="thrust", values=CHORD_FORMS,
                              desc="'thrust': Eq. (31) from dT/dr; 'torque': Eq. (6) from dQ/dr")
@@ -107,19 +116,20 @@ class ChordComp(om.ExplicitComponent):
             dcoef_dcl, dcoef_dcd = sin, cos
             scale = scale * inputs["radii"]
         bad = ~(np.real(coef) > 0.0)
-        if np.any(bad):
-            node, station = (int(i) for i in np.argwhere(bad)[0])
-            if self.options["chord_form"] == "thrust":
-                kind, rule = "C_x = C_l cos(phi) - C_d sin(phi)", "phi < atan(C_l/C_d)"
-            else:
-                kind, rule = "C_theta = C_l sin(phi) + C_d cos(phi)", "phi > -atan(C_d/C_l)"
-            raise om.AnalysisError(
-                f"{self.msginfo}: the blade-element force coefficient {kind} is not positive at "
-                f"{int(np.sum(bad))} station(s), first at node {node}, station {station} "
-                f"(phi = {np.real(phi[node, station]):.6g} rad, C_l/C_d = "
-                f"{np.real(cl[node, 0] / cd[node, 0]):.6g}); the chord needs {rule} to be back-computed. "
-                "In the BILD chain the station cannot carry the ideal load (Assumption 3): increase "
-                "hub_radius_ratio, lower the advance ratio / V_x, or use an airfoil with a higher maximum L/D")
+        if self.options["chord_form"] == "thrust":
+            kind, rule = "C_x = C_l cos(phi) - C_d sin(phi)", "phi < atan(C_l/C_d)"
+        else:
+            kind, rule = "C_theta = C_l sin(phi) + C_d cos(phi)", "phi > -atan(C_d/C_l)"
+        details = station_details(bad, {"phi [rad]": phi, "C_l/C_d": cl / cd})
+        report_infeasible(
+            self, "force_coefficient", np.any(bad, axis=1),
+            f"the blade-element force coefficient {kind} is not positive; the chord needs {rule} to be "
+            "back-computed. In the BILD chain the station cannot carry the ideal load (Assumption 3): increase "
+            "hub_radius_ratio, lower the advance ratio / V_x, or use an airfoil with a higher maximum L/D",
+            details)
+        if np.any(bad):  # placeholder values of infeasible nodes inside a BILDGroup
+            coef, dcoef_dphi = np.where(bad, 1.0, coef), np.where(bad, 0.0, dcoef_dphi)
+            dcoef_dcl, dcoef_dcd = np.where(bad, 0.0, dcoef_dcl), np.where(bad, 0.0, dcoef_dcd)
         return load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale
 
     def compute(self, inputs, outputs):

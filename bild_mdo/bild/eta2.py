@@ -8,6 +8,7 @@ from bild_mdo.bild.quartic import (
     quartic,
     quartic_partials,
 )
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.newton import bracketed_newton, complex_step_update, false_position
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -63,8 +64,9 @@ def _describe(index, names=None):
     return ", ".join(f"{name} {int(i)}" for name, i in zip(names, index))
 
 
-def _validate(v_axial, v_theta, lam, cl, cd, index_names):
-    checks = (
+def _domain_checks(v_axial, v_theta, lam, cl, cd):
+    """``(ok_mask, name, values, rule)`` of each input's domain check, elementwise."""
+    rules = (
         (v_axial, lambda x: x >= 0.0, "v_axial", "must be >= 0 (axial inflow; BILD assumes 0 <= V_x, Assumption 3)"),
         (v_theta, lambda x: x > 0.0, "v_theta", "must be > 0 (blade speed Omega*r at a station off the axis)"),
         (lam, lambda x: x > 0.0, "ideal-loading constant lambda",
@@ -72,12 +74,32 @@ def _validate(v_axial, v_theta, lam, cl, cd, index_names):
         (cl, lambda x: x > 0.0, "cl_star", "must be > 0 (lift coefficient at maximum L/D)"),
         (cd, lambda x: x > 0.0, "cd_star", "must be > 0 (drag coefficient at maximum L/D)"),
     )
-    for values, ok, name, rule in checks:
-        bad = ~(np.isfinite(values) & ok(values))
-        if np.any(bad):
-            index = np.argwhere(bad)[0]
+    with np.errstate(invalid="ignore"):
+        return [(np.isfinite(values) & ok(values), name, values, rule) for values, ok, name, rule in rules]
+
+
+def _validate(v_axial, v_theta, lam, cl, cd, index_names):
+    for ok, name, values, rule in _domain_checks(v_axial, v_theta, lam, cl, cd):
+        if not np.all(ok):
+            index = np.argwhere(~ok)[0]
             value = float(values[tuple(index)])
             raise ValueError(f"eta2 solve: {name} = {value!r} at {_describe(index, index_names)}: {rule}.")
+
+
+def solve_eta2_flagged(v_axial, v_theta, lam, cl, cd):
+    """:func:`solve_eta2` that flags instead of raising: ``(eta2, failed)``, both of the broadcast shape.
+
+    ``failed`` marks elements outside the domain or not converged; their
+    eta2 is a placeholder in [0.5, 1] (the root for a benign hover station).
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (v_axial, v_theta, lam, cl, cd)))
+    invalid = np.zeros(arrays[0].shape, dtype=bool)
+    for ok, _, _, _ in _domain_checks(*arrays):
+        invalid |= ~ok
+    benign = (0.0, 1.0, 1.0, 1.0, 0.01)  # hover, loaded: lam > V_theta C_d/(2 C_l)
+    flat = [np.where(invalid, value, a).ravel() for value, a in zip(benign, arrays)]
+    eta, converged = _solve_flat(flat[0], flat[1], flat[2], flat[4] / flat[3])
+    return eta.reshape(invalid.shape), invalid | ~converged.reshape(invalid.shape)
 
 
 def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
@@ -191,8 +213,14 @@ class Eta2Comp(om.ImplicitComponent):
     step one Newton update in complex arithmetic on ``P`` carries the exact
     derivative in the imaginary part.
 
+    Inputs outside the domain or a solve that does not converge raise
+    :class:`openmdao.api.AnalysisError`; inside a BILDGroup the nodes are
+    recorded in the group's feasibility ledger instead
+    (:func:`solve_eta2_flagged`).
+
     Options: the sizes ``num_nodes`` and ``num_radial``
-    (:func:`~bild_mdo.utils.options.declare_size_options`).
+    (:func:`~bild_mdo.utils.options.declare_size_options`) and ``feasibility``
+    (:func:`~bild_mdo.bild.feasibility.declare_feasibility_option`).
 
     Inputs
     ------
@@ -213,6 +241,7 @@ class Eta2Comp(om.ImplicitComponent):
 
     def initialize(self):
         declare_size_options(self.options)
+        declare_feasibility_option(self.options)
 
     def setup(self):
         add_inputs(self, ("v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"))
@@ -245,11 +274,20 @@ class Eta2Comp(om.ImplicitComponent):
     def solve_nonlinear(self, inputs, outputs):
         real = {name: np.real(inputs[name]) for name in
                 ("v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star")}
-        try:
-            eta = solve_eta2(real["v_axial"][:, None], real["v_theta"], real["ideal_loading_constant"][:, None],
-                             real["cl_star"][:, None], real["cd_star"][:, None], index_names=("node", "station"))
-        except ValueError as err:
-            raise om.AnalysisError(f"{self.msginfo}: {err}") from err
+        args = (real["v_axial"][:, None], real["v_theta"], real["ideal_loading_constant"][:, None],
+                real["cl_star"][:, None], real["cd_star"][:, None])
+        if self.options["feasibility"] is None:
+            try:
+                eta = solve_eta2(*args, index_names=("node", "station"))
+            except ValueError as err:
+                raise om.AnalysisError(f"{self.msginfo}: {err}") from err
+        else:
+            eta, failed = solve_eta2_flagged(*args)
+            details = station_details(failed, {"V_x [m/s]": args[0], "V_theta [m/s]": args[1],
+                                                     "lambda [m/s]": args[2]})
+            report_infeasible(self, "solve", np.any(failed, axis=1),
+                              "eta2 solve: an input is outside its domain or the solve did not converge",
+                              details)
         if self.under_complex_step:
             residual = quartic(eta, *self._arguments(inputs))
             slope = quartic_partials(eta, *self._arguments(real), wrt=("eta",))["eta"]

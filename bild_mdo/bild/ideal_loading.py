@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_node
 
@@ -16,10 +17,14 @@ class IdealLoadingComp(om.ExplicitComponent):
     with the reference station's induced velocities (Alg. 1, step 3).  Eq. (22)
     requires Assumption 3, ``0 <= V_x < u_axial`` and ``0 < u_theta < V_theta``,
     under which ``lambda > u_axial - V_x > 0`` (Appendix 7.1); inputs that violate
-    it raise :class:`openmdao.api.AnalysisError`.  (Eq. (22) is the negative of
+    it raise :class:`openmdao.api.AnalysisError` naming every failing node
+    (inside a :class:`~bild_mdo.bild.bild_group.BILDGroup` they are recorded
+    in the group's feasibility ledger instead and get the placeholder
+    ``lambda = V_theta_ref``, zero partials).  (Eq. (22) is the negative of
     Eq. (14) as printed; the paper, and this library, use Eq. (22).)
 
-    Options: the size ``num_nodes`` (:func:`~bild_mdo.utils.options.declare_size_options`).
+    Options: the size ``num_nodes`` (:func:`~bild_mdo.utils.options.declare_size_options`) and
+    ``feasibility`` (:func:`~bild_mdo.bild.feasibility.declare_feasibility_option`).
 
     Inputs
     ------
@@ -40,6 +45,7 @@ class IdealLoadingComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_size_options(self.options, radial=False)
+        declare_feasibility_option(self.options)
 
     def setup(self):
         add_inputs(self, ("u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"))
@@ -51,31 +57,35 @@ class IdealLoadingComp(om.ExplicitComponent):
                               rows=rows, cols=cols)
 
     def _validate(self, u_axial, u_t, v_x, v_t):
+        """Check Assumption 3 at the reference station; return the mask of the failing nodes."""
         u_axial, u_t, v_x, v_t = (np.real(a) for a in (u_axial, u_t, v_x, v_t))
+        finite = np.isfinite(u_axial) & np.isfinite(u_t) & np.isfinite(v_x) & np.isfinite(v_t)
+        details = {"u_axial_ref [m/s]": u_axial, "u_theta_ref [m/s]": u_t, "v_axial [m/s]": v_x,
+                   "v_theta_ref [m/s]": v_t}
         checks = (
             (v_x >= 0.0, "V_x >= 0", "the axial free-stream velocity must not be negative"),
             (u_axial > v_x, "u_axial_ref > V_x",
              "the reference station must produce thrust (check the reference chord, rpm and airfoil point)"),
             (u_t > 0.0, "u_theta_ref > 0", "the reference station must absorb torque"),
             (u_t < v_t, "u_theta_ref < V_theta_ref", "the reference station is overloaded (the tangential "
-                                                      "induction reaches the blade speed): reduce ref_chord "
+                                                      "induction reaches the blade speed); reduce ref_chord "
                                                       "(reference solidity) or the advance ratio"),
         )
+        failed = np.zeros(v_x.shape, dtype=bool)
         for ok, rule, hint in checks:
-            bad = ~(ok & np.isfinite(u_axial) & np.isfinite(u_t) & np.isfinite(v_x) & np.isfinite(v_t))
-            if np.any(bad):
-                i = int(np.flatnonzero(bad)[0])
-                at = ", ".join(f"{label}={float(a[i])!r}" for label, a in
-                               (("u_axial_ref", u_axial), ("u_theta_ref", u_t), ("v_axial", v_x), ("v_theta_ref", v_t)))
-                raise om.AnalysisError(f"{self.msginfo}: Assumption 3 violated at node {i} ({rule} fails: {at} m/s); "
-                                       f"{hint}.")
+            bad = ~(ok & finite) & ~failed
+            report_infeasible(self, rule, bad, f"Assumption 3 violated at the reference station: {rule} fails; "
+                                               f"{hint}", details)
+            failed |= bad
+        return failed
 
     def compute(self, inputs, outputs):
         u_axial, u_t = inputs["u_axial_ref"], inputs["u_theta_ref"]
         v_x, v_t = inputs["v_axial"], inputs["v_theta_ref"]
-        self._validate(u_axial, u_t, v_x, v_t)
-        outputs["ideal_loading_constant"] = (v_t * u_t / (2.0 * (2.0 * u_axial - v_x)) + v_t * u_axial / (v_t - u_t)
-                                             - v_x)
+        failed = self._validate(u_axial, u_t, v_x, v_t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lam = v_t * u_t / (2.0 * (2.0 * u_axial - v_x)) + v_t * u_axial / (v_t - u_t) - v_x
+        outputs["ideal_loading_constant"] = np.where(failed, v_t, lam)
 
     def compute_partials(self, inputs, partials):
         u_axial, u_t = inputs["u_axial_ref"], inputs["u_theta_ref"]
@@ -83,7 +93,10 @@ class IdealLoadingComp(om.ExplicitComponent):
         thrust_slope = 2.0 * u_axial - v_x  # proportional to dT_r/du_axial, Eq. (21)
         gap = v_t - u_t
         name = "ideal_loading_constant"
-        partials[name, "u_axial_ref"] = -v_t * u_t / thrust_slope**2 + v_t / gap
-        partials[name, "u_theta_ref"] = v_t / (2.0 * thrust_slope) + v_t * u_axial / gap**2
-        partials[name, "v_axial"] = v_t * u_t / (2.0 * thrust_slope**2) - 1.0
-        partials[name, "v_theta_ref"] = u_t / (2.0 * thrust_slope) - u_axial * u_t / gap**2
+        # Placeholder nodes (infeasible, inside a BILDGroup) hold lambda = V_theta_ref.
+        failed = self._validate(u_axial, u_t, v_x, v_t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            partials[name, "u_axial_ref"] = np.where(failed, 0.0, -v_t * u_t / thrust_slope**2 + v_t / gap)
+            partials[name, "u_theta_ref"] = np.where(failed, 0.0, v_t / (2.0 * thrust_slope) + v_t * u_axial / gap**2)
+            partials[name, "v_axial"] = np.where(failed, 0.0, v_t * u_t / (2.0 * thrust_slope**2) - 1.0)
+            partials[name, "v_theta_ref"] = np.where(failed, 1.0, u_t / (2.0 * thrust_slope) - u_axial * u_t / gap**2)

@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.bild.quartic import axial_velocity_root
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -30,12 +31,16 @@ class InducedVelocityComp(om.ExplicitComponent):
     ``V_x < eta2 V_theta C_l*/C_d*``.  It fails at inboard stations (small
     ``V_theta``) at a high advance ratio with a low-L/D airfoil; such a
     station would windmill, and the compute raises
-    :class:`openmdao.api.AnalysisError` naming it.  The unloaded hover
+    :class:`openmdao.api.AnalysisError` naming every failing node (inside a
+    :class:`~bild_mdo.bild.bild_group.BILDGroup` the nodes are recorded in
+    the group's feasibility ledger instead; their values, still finite, are
+    placeholders).  The unloaded hover
     station (``eta2 = 1``, ``V_x = 0``, so ``u_axial = V_x = 0``) satisfies the
     rule and is legitimate.
 
     Options: the sizes ``num_nodes`` and ``num_radial``
-    (:func:`~bild_mdo.utils.options.declare_size_options`).
+    (:func:`~bild_mdo.utils.options.declare_size_options`) and ``feasibility``
+    (:func:`~bild_mdo.bild.feasibility.declare_feasibility_option`).
 
     Inputs
     ------
@@ -58,6 +63,7 @@ class InducedVelocityComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_size_options(self.options)
+        declare_feasibility_option(self.options)
 
     def setup(self):
         add_inputs(self, ("eta2", "v_axial", "v_theta", "cl_star", "cd_star"))
@@ -81,21 +87,18 @@ class InducedVelocityComp(om.ExplicitComponent):
         return eta2, v_t, v_x, s, b, c
 
     def _check_positive_thrust(self, eta2, v_t, v_x, s):
-        """Raise unless ``V_x < eta2 V_theta / s`` (Assumption 3, ``u_axial > V_x``) at every station."""
+        """Report the nodes where ``V_x < eta2 V_theta / s`` (Assumption 3, ``u_axial > V_x``) fails somewhere."""
         eta2, v_t, v_x, s = (np.real(a) for a in (eta2, v_t, v_x, s))
         limit = eta2 * v_t / s
         bad = ~(v_x < limit)
-        if not np.any(bad):
-            return
-        node, station = (int(i) for i in np.argwhere(bad)[0])
-        raise om.AnalysisError(
-            f"{self.msginfo}: Assumption 3 (u_axial > V_x, positive local thrust) fails at {int(np.sum(bad))} "
-            f"station(s), first at node {node}, station {station} (V_theta = {v_t[node, station]:.6g} m/s, "
-            f"eta2 = {eta2[node, station]:.6g}, V_x = {v_x[node, 0]:.6g} m/s, "
-            f"C_l*/C_d* = {1.0 / s[node, 0]:.6g}): it needs V_x < eta2 V_theta C_l*/C_d* "
-            f"= {limit[node, station]:.6g} m/s, else the blade element windmills. Increase hub_radius_ratio "
+        details = station_details(bad, {"V_theta [m/s]": v_t, "eta2": eta2, "V_x [m/s]": v_x,
+                                              "C_l*/C_d*": 1.0 / s, "limit eta2 V_theta C_l*/C_d* [m/s]": limit})
+        report_infeasible(
+            self, "positive_thrust", np.any(bad, axis=1),
+            "Assumption 3 (u_axial > V_x, positive local thrust) fails: a station needs "
+            "V_x < eta2 V_theta C_l*/C_d*, else the blade element windmills. Increase hub_radius_ratio "
             "(inboard stations have the lowest V_theta), lower the advance ratio / V_x, or use an airfoil "
-            "with a higher maximum L/D.")
+            "with a higher maximum L/D", details)
 
     def compute(self, inputs, outputs):
         eta2, v_t, v_x, s, b, c = self._terms(inputs)

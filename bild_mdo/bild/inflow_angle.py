@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -18,8 +19,14 @@ class InflowAngleComp(om.ExplicitComponent):
     Every blade element works at the angle of attack of maximum ``C_l/C_d``
     (Assumption 2), so the twist is the inflow angle shifted by ``alpha*``.
 
+    ``u_theta >= 2 V_theta`` (``eta2 <= 0``, never reached by the quartic's
+    root) raises :class:`openmdao.api.AnalysisError` naming every failing
+    node, or, inside a BILDGroup, records them in the group's feasibility
+    ledger (placeholder ``V_t = V_theta``).
+
     Options: the sizes ``num_nodes`` and ``num_radial``
-    (:func:`~bild_mdo.utils.options.declare_size_options`).
+    (:func:`~bild_mdo.utils.options.declare_size_options`) and ``feasibility``
+    (:func:`~bild_mdo.bild.feasibility.declare_feasibility_option`).
 
     Inputs
     ------
@@ -44,6 +51,7 @@ class InflowAngleComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_size_options(self.options)
+        declare_feasibility_option(self.options)
 
     def setup(self):
         add_inputs(self, ("u_axial", "u_theta", "v_theta", "alpha_star"))
@@ -61,12 +69,10 @@ class InflowAngleComp(om.ExplicitComponent):
         u_axial = inputs["u_axial"]
         v_t = inputs["v_theta"] - 0.5 * inputs["u_theta"]
         bad = ~(np.real(v_t) > 0.0)
-        if np.any(bad):
-            node, station = (int(i) for i in np.argwhere(bad)[0])
-            raise om.AnalysisError(
-                f"{self.msginfo}: u_theta >= 2 V_theta (eta2 <= 0) at {int(np.sum(bad))} station(s), first at "
-                f"node {node}, station {station} (u_theta = {np.real(inputs['u_theta'][node, station]):.6g} m/s, "
-                f"V_theta = {np.real(inputs['v_theta'][node, station]):.6g} m/s); the inflow angle is undefined")
+        details = station_details(bad, {"u_theta [m/s]": inputs["u_theta"], "V_theta [m/s]": inputs["v_theta"]})
+        report_infeasible(self, "swirl", np.any(bad, axis=1), "u_theta >= 2 V_theta (eta2 <= 0): the inflow angle "
+                          "is undefined", details)
+        v_t = np.where(bad, inputs["v_theta"], v_t)  # placeholder of infeasible nodes inside a BILDGroup
         # V_t = eta2 V_theta > 0 (Eq. (23)), so the plain arctan is the right branch and complex-step safe.
         phi = np.arctan(u_axial / v_t)
         outputs["phi"] = phi

@@ -4,6 +4,7 @@ import openmdao.api as om
 
 from bild_mdo.bem.blade_element import declare_section_options
 from bild_mdo.bem.prandtl import loss_inputs, loss_partials, prandtl_loss
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -24,12 +25,22 @@ class MomentumLoadsComp(om.ExplicitComponent):
     (the ratio of thrust to torque) unchanged, so a BEM analysis with the same
     loss model reproduces these loads on the back-computed blade.
 
+    Inside a :class:`~bild_mdo.bild.bild_group.BILDGroup` (option
+    ``feasibility`` set) a node with no torque at any station (a hover rotor
+    whose ideal loading leaves every station unloaded, ``lambda <= V_theta
+    C_d*/(2 C_l*)`` everywhere) is recorded as infeasible and gets the
+    placeholder loads ``dT/dr = dQ/dr = 1`` with zero partials, so that the
+    performance of the batch stays finite; used alone the component
+    computes the (zero) loads.
+
     Options
     -------
     num_nodes, num_radial, num_blades : int
         Sizes (:func:`~bild_mdo.utils.options.declare_size_options`) and the number of blades B.
     loss_model : str
         ``'tip_hub'`` (default), ``'tip'`` or ``'none'``.
+    feasibility : FeasibilityLedger or None
+        See :func:`~bild_mdo.bild.feasibility.declare_feasibility_option`.
 
     Inputs
     ------
@@ -58,6 +69,7 @@ class MomentumLoadsComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_section_options(self.options, polar=False)
+        declare_feasibility_option(self.options)
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
@@ -109,9 +121,22 @@ class MomentumLoadsComp(om.ExplicitComponent):
         q_no_f = 2.0 * np.pi * rho * u_axial * u_t * r ** 2
         return self._loss(inputs), u_axial, u_t, r, v_x, rho, omega, t_no_f, q_no_f
 
+    def _unloaded(self, torque):
+        """Nodes with no torque at any station, reported to the group's ledger (none for the component alone)."""
+        if self.options["feasibility"] is None:
+            return np.zeros(torque.shape[0], dtype=bool)
+        unloaded = ~np.any(np.real(torque) > 0.0, axis=1)
+        report_infeasible(self, "unloaded", unloaded,
+                          "no station can be loaded (hover: lambda <= V_theta C_d*/(2 C_l*) at every station), "
+                          "so the rotor has zero torque: increase ref_chord or rpm, or use an airfoil with a "
+                          "higher maximum L/D", {"loaded stations": np.sum(np.real(torque) > 0.0, axis=1)})
+        return unloaded
+
     def compute(self, inputs, outputs):
         loss, _, _, _, v_x, _, omega, t_no_f, q_no_f = self._terms(inputs)
         thrust, torque = t_no_f * loss.F, q_no_f * loss.F
+        unloaded = self._unloaded(torque)[:, None]
+        thrust, torque = np.where(unloaded, 1.0, thrust), np.where(unloaded, 1.0, torque)
         outputs["loss_factor"] = loss.F
         outputs["dthrust_dr"] = thrust
         outputs["dtorque_dr"] = torque
@@ -121,6 +146,8 @@ class MomentumLoadsComp(om.ExplicitComponent):
         loss, u_axial, u_t, r, v_x, rho, omega, t_no_f, q_no_f = self._terms(inputs)
         f = loss.F
         thrust, torque = t_no_f * f, q_no_f * f
+        # Placeholder loads of unloaded nodes (inside a BILDGroup) are constants.
+        keep = ~self._unloaded(torque)[:, None]
 
         d_thrust = {
             "u_axial": 4.0 * np.pi * rho * (2.0 * u_axial - v_x) * r * f,
@@ -144,12 +171,13 @@ class MomentumLoadsComp(om.ExplicitComponent):
                 partials["loss_factor", name] = d_loss[name].ravel()
 
         for name, value in d_thrust.items():
-            partials["dthrust_dr", name] = value.ravel()
+            partials["dthrust_dr", name] = (keep * value).ravel()
         for name, value in d_torque.items():
-            partials["dtorque_dr", name] = value.ravel()
+            partials["dtorque_dr", name] = (keep * value).ravel()
         for name in set(d_thrust) | set(d_torque):
             value = omega * d_torque.get(name, 0.0) - v_x * d_thrust.get(name, 0.0)
+            value = keep * np.broadcast_to(value, u_axial.shape)
             if name == "v_axial":
-                value = value - thrust
-            partials["denergy_loss_dr", name] = np.broadcast_to(value, u_axial.shape).ravel()
-        partials["denergy_loss_dr", "rpm"] = (RPM_TO_RAD_PER_S * torque).ravel()
+                value = value - np.where(keep, thrust, 1.0)  # dE/dV_x = -dT/dr (placeholder 1)
+            partials["denergy_loss_dr", name] = value.ravel()
+        partials["denergy_loss_dr", "rpm"] = (RPM_TO_RAD_PER_S * np.where(keep, torque, 1.0)).ravel()

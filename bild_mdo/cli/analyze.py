@@ -6,6 +6,7 @@ import numpy as np
 from bild_mdo import validation
 from bild_mdo.airfoil.builtin import available_polars
 from bild_mdo.bem.prandtl import LOSS_MODELS
+from bild_mdo.cli.files import airfoil_polar, figure_file, output_file
 from bild_mdo.io.files import read_geometry
 from bild_mdo.plots.curves import plot_performance_curves
 from bild_mdo.results.off_design import off_design_sweep
@@ -34,9 +35,10 @@ def add_analyze_arguments(parser):
                         help="axial velocity [m/s] of an rpm sweep (default: the file's design value, else 0)")
     parser.add_argument("--altitude", type=float, default=None, metavar="H",
                         help="ISA altitude [m] (default: the file's design altitude, else 0)")
-    parser.add_argument("--airfoil", choices=available_polars(), default=None,
-                        help="airfoil polar (default: the airfoil named in the file; for a foreign QPROP file, "
-                             "its CL/CD model lines)")
+    parser.add_argument("--airfoil", default=None, metavar="AIRFOIL",
+                        help=f"airfoil polar: a built-in name ({', '.join(available_polars())}) or any airfoil "
+                             "bild_mdo.airfoil.builtin.resolve_polar accepts (default: the airfoil named in the "
+                             "file; for a foreign QPROP file, its CL/CD model lines)")
     parser.add_argument("--loss-model", choices=LOSS_MODELS, default=None,
                         help="Prandtl loss factor (default: the file's, else tip_hub)")
     parser.add_argument("--design", type=int, default=0, metavar="I",
@@ -48,7 +50,15 @@ def add_analyze_arguments(parser):
 
 def _sweep_points(option, triple):
     start, stop, count = triple
-    return np.linspace(start, stop, validation.integer(f"{option} N", count))
+    count = validation.integer(f"{option} N", count)
+    # The smallest blade has 2 stations: a count that cannot fit even then stops before the file is read.
+    validation.memory_bound(f"{option} N", count, 2, hint="use fewer points", at_least=True)
+    for label, value in (("START", start), ("STOP", stop)):
+        if option == "--rpm":
+            validation.positive(f"--rpm {label}", value, units="rpm")
+        else:
+            validation.non_negative(f"--advance-ratio {label}", value)
+    return np.linspace(start, stop, count)
 
 
 def run_analyze(args, out):
@@ -59,11 +69,19 @@ def run_analyze(args, out):
     int
         Exit code, 0.
     """
-    # Argument errors first: they need no file.
-    points = (_sweep_points("--advance-ratio", args.advance_ratio) if args.advance_ratio is not None
-              else _sweep_points("--rpm", args.rpm))
+    # Argument errors first: they need no file and leave none behind.
+    option = "--advance-ratio" if args.advance_ratio is not None else "--rpm"
+    points = _sweep_points(option, args.advance_ratio if args.advance_ratio is not None else args.rpm)
+    for name in ("at_rpm", "v_axial", "altitude"):
+        value = getattr(args, name)
+        if value is not None:
+            validation.real_array("--" + name.replace("_", "-"), value, ndim=(0,))
+    csv_file = output_file("--csv", args.csv)
+    plot_file = figure_file("--plot", args.plot)
+    polar = airfoil_polar("--airfoil", args.airfoil)
     geometry = read_geometry(args.geometry, design=args.design)
-    kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=args.airfoil)
+    validation.memory_bound(f"{option} N", points.size, geometry.num_radial, hint="use fewer points")
+    kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=polar)
     if args.advance_ratio is not None:
         result = off_design_sweep(geometry, advance_ratios=points, rpm=args.at_rpm, **kwargs)
     else:
@@ -72,9 +90,9 @@ def run_analyze(args, out):
           f"R = {geometry.radius:.6g} m, hub radius {geometry.hub_radius:.6g} m, "
           f"airfoil {args.airfoil or geometry.airfoil or 'from the QPROP CL/CD lines'}", file=out)
     print(result.summary(), file=out)
-    if args.csv:
-        print(f"wrote {result.to_csv(args.csv)}", file=out)
-    if args.plot:
-        plot_performance_curves(result, args.plot)
-        print(f"wrote {args.plot}", file=out)
+    if csv_file:
+        print(f"wrote {result.to_csv(csv_file)}", file=out)
+    if plot_file:
+        plot_performance_curves(result, plot_file)
+        print(f"wrote {plot_file}", file=out)
     return 0

@@ -1,10 +1,9 @@
 """``bild-mdo demo``: design the paper's rotor and write its station table, files and figures."""
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
+from bild_mdo.cli.files import output_folder
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade
 from bild_mdo.plots.curves import plot_performance_curves
@@ -35,7 +34,7 @@ def run_demo(args, out):
     int
         Exit code, 0.
     """
-    folder = Path(args.output_dir)
+    folder = output_folder("--output-dir", args.output_dir)
     folder.mkdir(parents=True, exist_ok=True)
     rotor = design_rotor()
     print(rotor.summary(), file=out)

@@ -1,11 +1,15 @@
 """``bild-mdo design``: design ideal rotor blades with BILD and print or write them."""
 from __future__ import annotations
 
-from pathlib import Path
+import warnings
 
+import numpy as np
+
+from bild_mdo import validation
 from bild_mdo.airfoil.builtin import available_polars
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.chord import CHORD_FORMS
+from bild_mdo.cli.files import airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade
 from bild_mdo.results.design import design_rotor
@@ -40,8 +44,10 @@ def add_design_arguments(parser):
     for option, default, metavar, text in _BATCH_OPTIONS:
         parser.add_argument(option, type=float, nargs="+", default=default, metavar=metavar, help=text)
     parser.add_argument("--num-blades", type=int, default=3, metavar="B", help="number of blades B [-]")
-    parser.add_argument("--airfoil", choices=available_polars(), default="naca4412",
-                        help="airfoil polar (naca4412: built-in XFOIL surrogate; analytic: closed-form test polar)")
+    parser.add_argument("--airfoil", default="naca4412", metavar="AIRFOIL",
+                        help=f"airfoil polar: a built-in name ({', '.join(available_polars())}; naca4412 is the "
+                             "XFOIL surrogate, analytic a closed-form test polar) or any airfoil "
+                             "bild_mdo.airfoil.builtin.resolve_polar accepts")
     parser.add_argument("--num-radial", type=int, default=30, metavar="N",
                         help="radial stations [-] (midpoints of equal annuli from hub to tip)")
     parser.add_argument("--loss-model", choices=LOSS_MODELS, default="tip_hub", help="Prandtl loss factor")
@@ -64,8 +70,40 @@ def _scalar_or_list(values):
     return values[0] if len(values) == 1 else values
 
 
+def _batch_length(values):
+    return len(values) if isinstance(values, list) else 1
+
+
+def _zero_chord_message(result):
+    """What is wrong with designs whose ideal chord vanishes at some station; None if every chord is positive.
+
+    BILD returns a zero chord where the ideal load it prescribes vanishes (a very
+    light loading, e.g. a tiny ``c_ref`` for the radius).  Such a blade ends
+    before the tip radius R, but the Prandtl tip loss of the design (and of any
+    BEM analysis of the file) assumes it reaches R, and the BEM inflow of a
+    zero-solidity station in hover is 0/0.  So the design is flagged instead of
+    writing files that describe no real rotor and that ``analyze`` rejects.
+    """
+    chord = np.atleast_2d(result.chord)
+    radii = np.atleast_2d(result.radii)
+    bad = np.flatnonzero(np.any(chord <= 0.0, axis=1))
+    if not bad.size:
+        return None
+    first = int(bad[0])
+    stations = np.flatnonzero(chord[first] <= 0.0)
+    label = (f"design {first}" + (f" (and {bad.size - 1} more)" if bad.size > 1 else "")) if result.is_batch \
+        else "the design"
+    return (f"{label} has zero chord at {stations.size} of {chord.shape[1]} stations (r = "
+            f"{radii[first, stations[0]]:.4g} ... {radii[first, stations[-1]]:.4g} m): the ideal load vanishes "
+            "there, so the blade ends before the tip radius its tip loss assumes; raise --ref-chord or lower "
+            "--radius")
+
+
 def run_design(args, out):
     """Design the rotor(s) of parsed ``design`` options, print them and write the files asked for.
+
+    Every output file and the airfoil are checked before the design runs; a
+    design with zero-chord stations is refused before any file is written.
 
     Returns
     -------
@@ -76,9 +114,22 @@ def run_design(args, out):
              else {"v_axial": _scalar_or_list(args.v_axial)})
     names = [option[2:].replace("-", "_") for option, *_ in _BATCH_OPTIONS]  # argparse's dest of each option
     sizing = {name: _scalar_or_list(getattr(args, name)) for name in names}
-    result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=args.airfoil,
-                          num_radial=args.num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
+    num_radial = validation.integer("--num-radial", args.num_radial, minimum=2)
+    lengths = {name: _batch_length(value) for name, value in {**speed, **sizing}.items()
+               if isinstance(value, list)}
+    count = validation.batch_size(lengths)
+    validation.memory_bound("designs", count, num_radial, hint="use fewer designs or --num-radial")
+    files = {"--csv": output_file("--csv", args.csv), "--json": output_file("--json", args.json),
+             "--qprop": batch_files("--qprop", args.qprop, count), "--plot": figure_file("--plot", args.plot)}
+    polar = airfoil_polar("--airfoil", args.airfoil)
+    result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=polar,
+                          num_radial=num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
                           root_chord_correction=args.root_chord_correction)
+    problem = _zero_chord_message(result)
+    if problem and (files["--csv"] or files["--json"] or files["--qprop"]):
+        raise ValueError(f"{problem} (no geometry file written)")
+    if problem:
+        warnings.warn(problem, stacklevel=1)
     if result.is_batch:
         print(result.summary(max_rows=50), file=out)
     else:
@@ -88,16 +139,13 @@ def run_design(args, out):
     written = []
     if args.csv:
         written += result.to_csv(args.csv)
-    if args.json:
-        written.append(result.to_json(args.json))
-    if args.qprop:
-        base = Path(args.qprop)
-        for i, design in enumerate(result):
-            target = base if not result.is_batch else base.with_name(f"{base.stem}_{i}{base.suffix}")
-            written.append(write_qprop(target, design))
-    if args.plot:
-        plot_blade(result, args.plot)
-        written.append(args.plot)
+    if files["--json"]:
+        written.append(result.to_json(files["--json"]))
+    for design, target in zip(result, files["--qprop"]):
+        written.append(write_qprop(target, design))
+    if files["--plot"]:
+        plot_blade(result, files["--plot"])
+        written.append(files["--plot"])
     for path in written:
         print(f"wrote {path}", file=out)
     return 0

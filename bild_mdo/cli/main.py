@@ -15,8 +15,10 @@ Each subcommand lives in its own module (:mod:`bild_mdo.cli.design`,
 ``add_<name>_arguments(parser)`` and a ``run_<name>(args, out)`` returning the
 exit code.  Errors in the arguments or from the library (``ValueError``,
 ``openmdao.api.AnalysisError``, missing files) print one line on stderr and
-exit with code 2; ``--debug`` shows the traceback.  :func:`main` returns the
-exit code.
+exit with code 2; ``--debug`` shows the traceback.  An unexpected error (a bug)
+is one line too, with exit code 1.  Warnings print as one line each
+(``bild-mdo: warning: ...``), once per distinct message, without a source path.
+:func:`main` returns the exit code.
 """
 from __future__ import annotations
 
@@ -31,6 +33,8 @@ from bild_mdo import __version__
 from bild_mdo.cli import analyze, demo, design, verify
 
 EXIT_USAGE = 2
+#: Exit code of an unexpected error (a bug), reported as one line; ``--debug`` shows the traceback.
+EXIT_INTERNAL = 1
 
 #: Subcommand name -> (module, function adding its options, function running it).
 COMMANDS = {
@@ -97,8 +101,18 @@ def _one_line(text):
     return " ".join(str(text).split())
 
 
-def _show_warning(message, category, filename, lineno, file=None, line=None):
-    print(f"bild-mdo: warning: {_one_line(message)}", file=sys.stderr if file is None else file)
+class _WarningDisplay:
+    """``warnings.showwarning`` of the command: one line per distinct message, no source path or code line."""
+
+    def __init__(self):
+        self.seen = set()
+
+    def __call__(self, message, category, filename, lineno, file=None, line=None):
+        text = _one_line(message)
+        if text in self.seen:
+            return
+        self.seen.add(text)
+        print(f"bild-mdo: warning: {text}", file=sys.stderr if file is None else file)
 
 
 def main(argv=None):
@@ -112,7 +126,8 @@ def main(argv=None):
     Returns
     -------
     int
-        Exit code: 0 on success, 2 for bad arguments or a failed analysis.
+        Exit code: 0 on success, 2 for bad arguments or a failed analysis, 1 for an unexpected
+        error (a bug, reported as one line).
     """
     parser = build_parser()
     try:
@@ -130,7 +145,7 @@ def main(argv=None):
     try:
         with warnings.catch_warnings():
             if not debug:
-                warnings.showwarning = _show_warning
+                warnings.showwarning = _WarningDisplay()
             return args.handler(args, sys.stdout)
     except (ValueError, om.AnalysisError, OSError, ImportError) as err:
         if debug:
@@ -140,6 +155,18 @@ def main(argv=None):
     except KeyboardInterrupt:
         print("bild-mdo: interrupted", file=sys.stderr)
         return 130
+    except MemoryError:
+        if debug:
+            traceback.print_exc()
+        print(f"bild-mdo {args.command}: error: out of memory; use fewer designs, points or stations",
+              file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as err:  # noqa: BLE001 - a bug: still one line, the traceback with --debug
+        if debug:
+            raise
+        print(f"bild-mdo {args.command}: internal error: {type(err).__name__}: {_one_line(err)} (rerun with "
+              "--debug for the traceback and report it)", file=sys.stderr)
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":

@@ -8,14 +8,23 @@ from __future__ import annotations
 
 import os
 import sys
+import tempfile
 
 from bild_mdo.optimization.problem import OPTIMIZERS
 from bild_mdo.plots.verification import require_matplotlib, save_figures
-from bild_mdo.verification.case_functions import bild_batch, optimize_case
-from bild_mdo.verification.cases import SweepSpec
+from bild_mdo.verification.case_functions import bild_batch, optimize_case, require_optimizer
+from bild_mdo.verification.cases import SweepSpec, check_workers
 from bild_mdo.verification.runner import default_db_path, run_sweep, sweep_summary, verification_table
 from bild_mdo.verification.statistics import format_table3
 from bild_mdo.verification.store import ResultsStore
+from bild_mdo.verification.store_file import check_store_path
+
+#: What each optimiser beyond SciPy's SLSQP needs, and how to get it.
+INSTALL_HINTS = {
+    "ipopt": ("cyipopt", "pip install cyipopt (or conda install -c conda-forge cyipopt)"),
+    "snopt": ("pyOptSparse built with SNOPT (a commercial licence)",
+              "build pyOptSparse (https://github.com/mdolab/pyoptsparse) with your licensed SNOPT source"),
+}
 
 #: One-line help of the subcommand.
 HELP = "verification sweep against BEM optimisation (paper Table 3)"
@@ -43,13 +52,14 @@ def add_verify_arguments(parser):
         The same parser.
     """
     parser.add_argument("--levels", type=int, default=10,
-                        help="levels per swept axis (J, R, altitude, c_ref); 10 gives the paper's 10,000 cases")
+                        help="levels per swept axis (J, R, altitude, c_ref), 2 to 15; 10 gives the paper's 10,000 cases")
     parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
                         help="local worker processes for the optimisations (1 = in this process; default: CPU count)")
     parser.add_argument("--scheduler", metavar="ADDR", default=None,
                         help="Dask scheduler address, e.g. tcp://host:8786 (needs bild-mdo[dask]); overrides --workers")
     parser.add_argument("--db", metavar="FILE", default=None,
-                        help="SQLite results store; an existing store of the same sweep is resumed "
+                        help="SQLite results store; an existing store of the same sweep is resumed (damaged rows "
+                             "are recomputed); one sweep writes to a file at a time "
                              "(default: bild-verify-L<levels>-<optimizer>.sqlite)")
     parser.add_argument("--optimizer", choices=OPTIMIZERS, default="slsqp",
                         help="optimiser of the reference BEM optimisation (default: slsqp)")
@@ -80,20 +90,31 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
 
     Raises
     ------
-    StoreError
-        If ``--db`` names a file that is not a results store of this sweep.
+    ValueError
+        Before any work and before the store file exists: ``--levels``
+        outside 2 ... 15 (the message gives the estimated memory and time),
+        ``--workers`` below 1, a ``--figures`` folder that cannot be written,
+        a ``--db`` path that cannot hold a store (``StoreError``).  During the
+        sweep: a full disk (``StoreFullError``; the stored rows stay, rerun to
+        resume), another sweep writing to the file (``StoreBusyError``), cases
+        that could not be set up (``CaseSetupError``; not stored).
     ImportError
-        With ``--figures`` and no matplotlib, before any case is computed.
+        Before any work: the optimiser's package, or matplotlib with ``--figures``, is missing.
     """
     out = sys.stdout if out is None else out
     spec = SweepSpec(levels=args.levels, optimizer=args.optimizer)
+    if args.scheduler is None:
+        check_workers(args.workers)
+    _require_optimizer(args.optimizer)
     db_path = args.db or default_db_path(spec)
     if args.figures:
         # Fail before hours of computing, not after.
         require_matplotlib()
+        _check_figures_folder(args.figures)
+    check_store_path(db_path)
     run = run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=args.workers, scheduler=args.scheduler,
                     progress=not args.no_progress)
-    with ResultsStore(db_path, spec) as store:
+    with ResultsStore(db_path, spec, writer=False) as store:
         rows = store.rows()
     table, optimality_error = verification_table(rows)
     print(sweep_summary(spec, db_path, run), file=out)
@@ -105,3 +126,24 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
         for path in save_figures(rows, args.figures):
             print(f"wrote {path}", file=out)
     return 0
+
+
+def _require_optimizer(optimizer):
+    try:
+        require_optimizer(optimizer)
+    except ImportError as exc:
+        needs, hint = INSTALL_HINTS.get(optimizer, (str(exc), "install it"))
+        raise ImportError(f"--optimizer {optimizer} needs {needs}, which is not importable here: {hint}, "
+                          "or use --optimizer slsqp (SciPy, always available)") from None
+
+
+def _check_figures_folder(folder):
+    """Raise ValueError unless ``folder`` is, or can be made as, a folder this process can write in."""
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise ValueError(f"--figures {folder}: it is a file, not a folder")
+    try:
+        os.makedirs(folder, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as exc:
+        raise ValueError(f"--figures {folder}: cannot write figures there ({exc.strerror or exc})") from None

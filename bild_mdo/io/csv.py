@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, FileMetadata,
-                                  as_geometry, design_point_key, format_number, split_key)
+                                  as_geometry, design_point_key, file_errors, format_number, split_key)
 
 
 def write_csv(path, geometry):
@@ -87,46 +87,58 @@ def _extend_ends(radii):
 def read_csv(path):
     """Read a geometry CSV (see the module docstring).
 
+    Parameters
+    ----------
+    path : str or path
+
     Returns
     -------
     RotorGeometry
+        Hub and tip radius from the metadata, else extended from the end stations.
 
     Raises
     ------
     ValueError
-        If the file is not a readable geometry table (the message says why).
+        For a file that is not a geometry table, with ``path:line:`` and the reason.
     """
     path = Path(path)
     meta, rows, header = FileMetadata(path), [], None
-    with path.open(encoding="utf-8", newline="") as handle:
+    with file_errors(path), path.open(encoding="utf-8", newline="") as handle:
         for line_no, line in enumerate(handle, start=1):
-            text = line.strip()
-            if not text:
-                continue
-            if text.startswith("#"):
-                key_text, colon, value = text.lstrip("#").strip().partition(":")
-                try:
-                    split_key(key_text)
-                except ValueError:
-                    continue  # a free-text comment, not metadata
-                if colon:
-                    meta.add(key_text, value)
-                continue
-            cells = next(csv.reader([text]))
-            if header is None:
-                header = _column_scale(cells)
-                continue
-            try:
-                rows.append([float(cells[header[k][0]]) * header[k][1] for k in ("r", "chord", "twist")])
-            except (ValueError, IndexError):
-                raise ValueError(f"{path}:{line_no}: expected numbers in every column, got {text!r}") from None
+            with file_errors(path, line_no):
+                header = _read_line(line, line_no, meta, rows, header)
     if header is None or not rows:
         raise ValueError(f"{path}: no geometry table found (need a header 'r [m],chord [m],twist [deg]' and rows)")
-    data = np.array(rows)
-    radii = data[:, 0]
-    hub, tip = _extend_ends(radii) if radii.size > 1 else (0.0, radii[-1])
     if "num_blades" not in meta:
         raise ValueError(f"{path}: the number of blades is missing (a line '# num_blades: 3')")
-    return meta.geometry(radii, data[:, 1], data[:, 2], radius=meta.length("radius", tip),
-                         hub_radius=meta.length("hub_radius", hub), num_blades=int(meta.text("num_blades")),
-                         name=meta.text("name", path.stem))
+    with file_errors(path):
+        data = np.array(rows)
+        radii = data[:, 0]
+        hub, tip = _extend_ends(radii) if radii.size > 1 else (0.0, radii[-1])
+        return meta.geometry(radii, data[:, 1], data[:, 2], radius=meta.length("radius", tip),
+                             hub_radius=meta.length("hub_radius", hub), num_blades=meta.integer("num_blades"),
+                             name=meta.text("name", path.stem))
+
+
+def _read_line(line, line_no, meta, rows, header):
+    """Take one line of a geometry CSV into ``meta`` or ``rows``; return the (new) header."""
+    text = line.strip()
+    if not text:
+        return header
+    if text.startswith("#"):
+        key_text, colon, value = text.lstrip("#").strip().partition(":")
+        try:
+            split_key(key_text)
+        except ValueError:
+            return header  # a free-text comment, not metadata
+        if colon:
+            meta.add(key_text, value)
+        return header
+    cells = next(csv.reader([text]))
+    if header is None:
+        return _column_scale(cells)
+    try:
+        rows.append([float(cells[header[k][0]]) * header[k][1] for k in ("r", "chord", "twist")])
+    except (ValueError, IndexError):
+        raise ValueError(f"expected numbers in every column, got {text!r}") from None
+    return header

@@ -5,6 +5,7 @@ other name is a QPROP propeller file (:mod:`bild_mdo.io.qprop`).
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from bild_mdo.io.csv import read_csv, write_csv
@@ -65,9 +66,49 @@ def read_geometry(path, fmt=None, design=0):
         If it cannot be read as a geometry.
     """
     path = Path(path)
+    if path.is_dir():
+        raise ValueError(f"{path}: is a folder, not a geometry file")
     if not path.is_file():
         raise FileNotFoundError(f"geometry file not found: {path}")
     kind = _format_of(path, fmt)
     if kind == "json":
         return read_json(path, design=design)
     return read_csv(path) if kind == "csv" else read_qprop(path)
+
+
+def check_output_file(path, option="output file"):
+    """Check, before any work, that a file can be written at ``path`` (nothing is created).
+
+    Parameters
+    ----------
+    path : str or path
+        The file to be written.
+    option : str
+        What asks for it (``'--csv'``), used in the message.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    ValueError
+        If ``path`` is a folder, its folder does not exist (or is a file), or it
+        cannot be written; one line naming ``option`` and the path.
+    """
+    path = Path(path)
+    if str(path) in ("", "."):
+        raise ValueError(f"{option}: give a file name")
+    if path.is_dir():
+        raise ValueError(f"{option} {path}: is a folder; give a file name in it")
+    folder = path.parent
+    if not folder.exists():
+        raise ValueError(f"{option} {path}: folder {folder} does not exist")
+    if not folder.is_dir():
+        raise ValueError(f"{option} {path}: {folder} is not a folder")
+    if path.exists():
+        if not os.access(path, os.W_OK):
+            raise ValueError(f"{option} {path}: the file is not writable")
+    elif not os.access(folder, os.W_OK | os.X_OK):
+        raise ValueError(f"{option} {path}: folder {folder} is not writable")
+    return path

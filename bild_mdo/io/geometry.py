@@ -15,6 +15,8 @@ has one).
 """
 from __future__ import annotations
 
+import contextlib
+import csv
 import dataclasses
 import re
 
@@ -22,6 +24,7 @@ import numpy as np
 
 from bild_mdo import validation
 from bild_mdo.airfoil.polar import Polar
+from bild_mdo.bem.prandtl import LOSS_MODELS
 
 FORMAT_NAME = "bild-mdo rotor geometry"
 FORMAT_VERSION = 1
@@ -120,9 +123,13 @@ class RotorGeometry:
         self.radii = np.array(self.radii, dtype=float)
         self.chord = np.array(self.chord, dtype=float)
         self.twist = np.array(self.twist, dtype=float)
-        self.radius = float(self.radius)
-        self.hub_radius = float(self.hub_radius)
+        self.radius = float(validation.positive("radius", self.radius, units="m", ndim=(0,)))
+        self.hub_radius = float(validation.non_negative("hub_radius", self.hub_radius, units="m", ndim=(0,)))
         self.num_blades = validation.integer("num_blades", self.num_blades)
+        validation.choice("loss_model", self.loss_model, LOSS_MODELS)
+        if self.airfoil is not None and not isinstance(self.airfoil, str):
+            raise ValueError(f"airfoil must be a name (text) or None, got {self.airfoil!r}")
+        self.name = str(self.name)
         if self.radii.ndim != 1 or self.radii.size < 2:
             raise ValueError(f"a geometry needs at least 2 stations in a 1-D array, got shape {self.radii.shape}")
         if self.chord.shape != self.radii.shape or self.twist.shape != self.radii.shape:
@@ -141,7 +148,13 @@ class RotorGeometry:
         if self.radii[0] < self.hub_radius - tol or self.radii[-1] > self.radius + tol:
             raise ValueError(f"stations must lie within hub and tip radius ({self.hub_radius:g} ... "
                              f"{self.radius:g} m), got {self.radii[0]:g} ... {self.radii[-1]:g} m")
-        self.design_point = {k: float(v) for k, v in (self.design_point or {}).items()}
+        if not isinstance(self.design_point or {}, dict):
+            raise ValueError(f"design_point must be a mapping of names to numbers, got {self.design_point!r}")
+        self.design_point = {str(k): float(validation.real_array(f"design_point {k}", v, ndim=(0,)))
+                             for k, v in (self.design_point or {}).items()}
+        if self.polar_coefficients is not None:
+            self.polar_coefficients = {str(k): float(validation.real_array(k, v, ndim=(0,)))
+                                       for k, v in self.polar_coefficients.items()}
 
     @property
     def twist_deg(self):
@@ -186,6 +199,37 @@ def as_geometry(source, index=None):
                      "RotorGeometry, dict of arrays or a geometry file path")
 
 
+#: Exceptions a damaged file can raise inside a reader; :func:`file_errors` turns them into one ValueError.
+_READ_ERRORS = (ValueError, TypeError, KeyError, IndexError, AttributeError, OverflowError, RecursionError,
+                csv.Error)
+
+
+def _one_line(text):
+    return " ".join(str(text).split())
+
+
+@contextlib.contextmanager
+def file_errors(path, line_no=None):
+    """Turn any error from reading ``path`` into one ``ValueError`` line that names the file (and line).
+
+    Messages that already name the file are kept; a message of a check on the
+    values (``chord must be ...``) gets ``path:`` (or ``path:line:``) in front.
+    Bytes that are not UTF-8 text are reported as such.
+    """
+    where = f"{path}:{line_no}" if line_no is not None else f"{path}"
+    try:
+        yield
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{where}: not a UTF-8 text file (byte {err.start}: {err.reason})") from None
+    except _READ_ERRORS as err:
+        text = _one_line(err) if not isinstance(err, KeyError) else f"missing key {err}"
+        if isinstance(err, RecursionError):
+            text = "nested too deeply"
+        if text.startswith(str(path)):
+            raise ValueError(text) from None
+        raise ValueError(f"{where}: {text or type(err).__name__}") from None
+
+
 class FileMetadata:
     """The ``key [units]: value`` metadata lines of a geometry file, as the CSV and QPROP readers collect them.
 
@@ -203,12 +247,27 @@ class FileMetadata:
         key, units = split_key(key_text)
         value = value.strip()
         if key.startswith("design_point."):
-            self.design_point[key.split(".", 1)[1]] = float(value)
+            name = key.split(".", 1)[1]
+            self.design_point[name] = self._float(key, value)
         else:
             self.entries[key] = (value, units)
 
     def __contains__(self, key):
         return key in self.entries
+
+    @staticmethod
+    def _float(key, text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise ValueError(f"{key} must be a number, got {text!r}") from None
+        if not np.isfinite(value):
+            raise ValueError(f"{key} must be a finite number, got {text!r}")
+        return value
+
+    def integer(self, key):
+        """The value of ``key`` as an integer >= 1 (``'3'`` or ``'3.0'``)."""
+        return validation.integer(key, self._float(key, self.text(key, "")))
 
     def text(self, key, default=None):
         """The value of ``key`` as text; ``default`` when absent (an empty value counts as absent)."""
@@ -222,7 +281,7 @@ class FileMetadata:
         value, units = self.entries[key]
         if units not in LENGTH_UNITS:
             raise ValueError(f"{self.path}: {key} has unknown units {units!r}; use one of {', '.join(LENGTH_UNITS)}")
-        return float(value) * LENGTH_UNITS[units]
+        return self._float(key, value) * LENGTH_UNITS[units]
 
     def geometry(self, radii, chord, twist, radius, hub_radius, num_blades, name, **extra):
         """A :class:`RotorGeometry` with the stations given and airfoil, loss model and design point from here."""

@@ -15,8 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
+from bild_mdo import validation
 from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, RotorGeometry,
-                                  as_geometry, design_point_key, format_number, split_key, unit_key)
+                                  as_geometry, design_point_key, file_errors, format_number, split_key, unit_key)
 
 
 def _geometry_entry(geometry):
@@ -73,7 +74,7 @@ def write_json(path, geometries, extras=None):
     return path
 
 
-def _lookup(entry, name, default_units, path):
+def _lookup(entry, name, default_units, path, scalar=False):
     """Value of ``name [units]`` in a JSON entry, converted to SI (lengths) or rad (angles)."""
     for key, value in entry.items():
         try:
@@ -85,7 +86,9 @@ def _lookup(entry, name, default_units, path):
         table = ANGLE_UNITS if name == "twist" else LENGTH_UNITS
         if units not in table:
             raise ValueError(f"{path}: {key!r} has unknown units; use one of {', '.join(table)}")
-        return np.asarray(value, dtype=float) * table[units]
+        what = "a number" if scalar else "a list of numbers"
+        values = validation.real_array(f"{path}: {key!r}", value, requirement=what, ndim=(0,) if scalar else (1,))
+        return values * table[units]
     raise ValueError(f"{path}: design entry lacks '{name} [{default_units}]'")
 
 
@@ -93,30 +96,59 @@ def _load(path):
     try:
         doc = json.loads(Path(path).read_text(encoding="utf-8"))
     except json.JSONDecodeError as err:
-        raise ValueError(f"{path}: not valid JSON ({err})") from None
+        raise ValueError(f"{path}:{err.lineno}: not valid JSON ({err.msg}, column {err.colno})") from None
     if not isinstance(doc, dict) or doc.get("format") != FORMAT_NAME or "designs" not in doc:
         raise ValueError(f"{path}: not a {FORMAT_NAME!r} JSON file")
+    designs = doc["designs"]
+    if not isinstance(designs, list) or not designs:
+        raise ValueError(f"{path}: 'designs' must be a non-empty list of design entries, got {_short(designs)}")
     return doc
+
+
+def _short(value):
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def read_json(path, design=0):
     """Read design ``design`` of a geometry JSON file.
 
+    Parameters
+    ----------
+    path : str or path
+    design : int
+        Index into the file's ``"designs"`` list (negative counts from the end).
+
     Returns
     -------
     RotorGeometry
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and what is wrong, if the file is not a
+        readable geometry file or ``design`` is not in it.
     """
     path = Path(path)
-    designs = _load(path)["designs"]
-    if not -len(designs) <= design < len(designs):
-        raise ValueError(f"{path}: holds {len(designs)} design(s); design {design} does not exist")
-    entry = designs[design]
-    point = {split_key(key)[0]: value for key, value in (entry.get("design_point") or {}).items()}
-    return RotorGeometry(radii=_lookup(entry, "r", "m", path), chord=_lookup(entry, "chord", "m", path),
-                         twist=_lookup(entry, "twist", "deg", path),
-                         radius=float(_lookup(entry, "radius", "m", path)),
-                         hub_radius=float(_lookup(entry, "hub_radius", "m", path)),
-                         num_blades=entry["num_blades"], airfoil=entry.get("airfoil"),
-                         loss_model=entry.get("loss_model", "tip_hub"), design_point=point,
-                         name=entry.get("name", path.stem))
-
+    with file_errors(path):
+        designs = _load(path)["designs"]
+        design = validation.integer("design", design, minimum=-len(designs))
+        if not design < len(designs):
+            raise ValueError(f"{path}: holds {len(designs)} design(s); design {design} does not exist")
+        entry = designs[design]
+        if not isinstance(entry, dict):
+            raise ValueError(f"{path}: design {design} must be an object of 'key [unit]' entries, got {_short(entry)}")
+        if "num_blades" not in entry:
+            raise ValueError(f"{path}: design {design} lacks 'num_blades'")
+        raw_point = entry.get("design_point") or {}
+        if not isinstance(raw_point, dict):
+            raise ValueError(f"{path}: 'design_point' must be an object of 'name [unit]': number entries, "
+                             f"got {_short(raw_point)}")
+        point = {split_key(key)[0]: value for key, value in raw_point.items()}
+        return RotorGeometry(radii=_lookup(entry, "r", "m", path), chord=_lookup(entry, "chord", "m", path),
+                             twist=_lookup(entry, "twist", "deg", path),
+                             radius=float(_lookup(entry, "radius", "m", path, scalar=True)),
+                             hub_radius=float(_lookup(entry, "hub_radius", "m", path, scalar=True)),
+                             num_blades=entry["num_blades"], airfoil=entry.get("airfoil"),
+                             loss_model=entry.get("loss_model", "tip_hub"), design_point=point,
+                             name=entry.get("name", path.stem))

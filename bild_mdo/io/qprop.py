@@ -56,11 +56,13 @@ from pathlib import Path
 
 import numpy as np
 
+from bild_mdo import validation
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.constants import angular_velocity
-from bild_mdo.io.geometry import FORMAT_VERSION, FileMetadata, as_geometry, design_point_key, format_number
+from bild_mdo.io.geometry import (FORMAT_VERSION, FileMetadata, as_geometry, design_point_key, file_errors,
+                                  format_number)
 
 #: Half width (in cl) of the band about the fitted lift line that counts as attached flow.
 LINEAR_LIFT_BAND = 0.05
@@ -117,13 +119,38 @@ def qprop_airfoil_coefficients(polar, reynolds):
             "CD0": cd0, "CD2u": float(cd2u), "CD2l": cd2l, "CLCD0": clcd0, "REref": reynolds, "REexp": re_exp}
 
 
+def check_qprop_coefficients(coefficients):
+    """Check QPROP's airfoil-model numbers: finite, ``CL_a > 0``, ``CLmin < CLmax``, drag terms >= 0, ``REref > 0``.
+
+    Raises
+    ------
+    ValueError
+        One line naming the first number out of its range.
+    """
+    missing = [name for name in QPROP_COEFFICIENTS if name not in coefficients]
+    if missing:
+        raise ValueError(f"QPROP airfoil model lacks {', '.join(missing)}")
+    c = {name: float(validation.real_array(name, coefficients[name], ndim=(0,))) for name in QPROP_COEFFICIENTS}
+    validation.positive("CL_a", c["CL_a"], units="1/rad", hint="lift-curve slope")
+    validation.smaller("CLmin", c["CLmin"], "CLmax", c["CLmax"])
+    for name in ("CD0", "CD2u", "CD2l"):
+        validation.non_negative(name, c[name])
+    validation.positive("REref", c["REref"])
+    return c
+
+
 def polar_from_qprop(coefficients):
     """An :class:`~bild_mdo.airfoil.AnalyticPolar` approximating QPROP's airfoil model.
 
     Linear lift ``CL0 + CL_a alpha``, drag ``CD0 (Re/REref)^REexp + CD2u (cl - CLCD0)^2``
     (symmetric: ``CD2l`` is not represented), stall near ``CLmax`` and ``CLmin``.
+
+    Raises
+    ------
+    ValueError
+        If a number is out of its range (:func:`check_qprop_coefficients`).
     """
-    c = coefficients
+    c = check_qprop_coefficients(coefficients)
     half = np.radians(3.0)
     alpha_max = float(np.clip((c["CLmax"] - c["CL0"]) / c["CL_a"], 1.1 * half, np.radians(60.0)))
     alpha_min = float(np.clip((c["CLmin"] - c["CL0"]) / c["CL_a"], -np.radians(60.0), -1.1 * half))
@@ -226,6 +253,8 @@ def _floats(text, count, what, path, line_no, optional=0):
         values = []
     if len(values) < count - optional:
         raise ValueError(f"{path}:{line_no}: expected {what}, got {text!r}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"{path}:{line_no}: expected finite numbers {what}, got {text!r}")
     return values
 
 
@@ -237,15 +266,27 @@ def read_qprop(path):
     RotorGeometry
         With ``polar_coefficients`` from the file's airfoil lines and, for files
         written by bild-mdo, the airfoil name, hub radius and design point.
+
+    Raises
+    ------
+    ValueError
+        If the file is not a readable QPROP propeller file: one line naming the
+        file (and its line) and what is wrong.
     """
     path = Path(path)
+    with file_errors(path):
+        return _read_qprop(path)
+
+
+def _read_qprop(path):
     meta, content = FileMetadata(path), []
     for line_no, raw in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
         stripped = raw.strip()
         if stripped.startswith("#"):
             body = stripped.lstrip("#").strip()
             if body.startswith("bild-mdo:") and "=" in body:
-                meta.add(*body[len("bild-mdo:"):].split("=", 1))
+                with file_errors(path, line_no):
+                    meta.add(*body[len("bild-mdo:"):].split("=", 1))
             continue
         if not content:
             if stripped:
@@ -264,7 +305,17 @@ def read_qprop(path):
     reref, reexp = _floats(content[5][1], 2, "'REref REexp'", path, content[5][0])
     rfac, cfac, bfac = _floats(content[6][1], 3, "'Rfac Cfac Bfac'", path, content[6][0])
     radd, cadd, badd = _floats(content[7][1], 3, "'Radd Cadd Badd'", path, content[7][0])
-    rows = np.array([_floats(text, 3, "a station row 'r c beta'", path, line_no)
+    with file_errors(path, blades_line[0]):
+        num_blades = validation.integer("Nblades", nb[0])
+    coefficients = dict(zip(QPROP_COEFFICIENTS, (cl0, cla, clmin, clmax, cd0, cd2u, cd2l, clcd0, reref, reexp)))
+    try:
+        check_qprop_coefficients(coefficients)
+    except ValueError as err:
+        # The line of the first number named in the message (each number sits on one of lines 3-6 of content).
+        lines = {name: content[2 + k // 2 if k < 4 else (4 if k < 8 else 5)][0]
+                 for k, name in enumerate(QPROP_COEFFICIENTS)}
+        raise ValueError(f"{path}:{lines[str(err).split()[0]]}: {err}") from None
+    rows = np.array([_floats(text, 3, "a station row 'r c beta'", path, line_no)[:3]
                      for line_no, text in content[8:]])
     radii = rows[:, 0] * rfac + radd
     chord = rows[:, 1] * cfac + cadd
@@ -276,8 +327,5 @@ def read_qprop(path):
             raise ValueError(f"{path}: a bild-mdo QPROP file needs at least 2 stations besides hub and tip rows")
         radii, chord, beta = radii[1:-1], chord[1:-1], beta[1:-1]
     hub = meta.length("hub_radius", hub)
-    if int(nb[0]) != nb[0]:
-        raise ValueError(f"{path}:{blades_line[0]}: Nblades must be an integer, got {nb[0]:g}")
-    coefficients = dict(zip(QPROP_COEFFICIENTS, (cl0, cla, clmin, clmax, cd0, cd2u, cd2l, clcd0, reref, reexp)))
-    return meta.geometry(radii, chord, beta, radius=tip, hub_radius=hub, num_blades=int(nb[0]), name=name,
+    return meta.geometry(radii, chord, beta, radius=tip, hub_radius=hub, num_blades=num_blades, name=name,
                          polar_coefficients=coefficients)

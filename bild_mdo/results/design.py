@@ -11,6 +11,11 @@ broadcast against each other) in ONE vectorised run of
     batch = design_rotor(advance_ratio=[0.5, 1.0, 1.5], ref_chord=0.15)
     print(batch[1].thrust, batch.efficiency)
 
+A batch with infeasible members (no ideal loading: the paper's Assumption 3
+fails at a station, or a hover rotor loads no station) raises one error naming
+them; ``on_infeasible='skip'`` returns the batch with ``result.feasible``,
+``result.status`` and ``result.feasible_designs()``.
+
 The set-up OpenMDAO problem of each configuration is cached by
 :func:`~bild_mdo.bild.problem.bild_problem`, so repeated calls of the same
 size only set inputs and run the model.
@@ -43,6 +48,9 @@ DISTRIBUTION_UNITS = {
     "radii": "m", "dr": "m", "chord": "m", "chord_raw": "m", "twist": "rad", "lift_coefficient": None,
     "drag_coefficient": None, "phi": "rad", "eta2": None, "dthrust_dr": "N/m", "dtorque_dr": "N*m/m",
 }
+
+#: What design_rotor does with infeasible designs.
+ON_INFEASIBLE = ("raise", "skip")
 
 #: Operating point and sizing inputs kept per design: name -> units.
 INPUT_UNITS = {
@@ -105,8 +113,23 @@ class DesignResult:
         The design inputs (both v_axial and J = V/(nD), whichever was given).
     values : dict
         All of the above by name.
+    feasible : bool or ndarray of bool
+        True where the ideal loading exists.  An infeasible design (only in a
+        result of ``on_infeasible='skip'``) keeps its inputs (``v_axial``,
+        ``advance_ratio``, ``rpm``, ``radius``, the radius ratios,
+        ``ref_chord``, ``altitude``); every other quantity is NaN.
+    status : str or ndarray of str
+        ``'ok'`` where feasible, else why the design is infeasible.
     num_blades, airfoil, loss_model, chord_form, root_chord_correction
         The configuration; ``polar`` is the Polar object used.
+
+    Notes
+    -----
+    ``efficiency`` and ``figure_of_merit`` hold the formulas' values
+    (``eta = T V / P``, ``FM = T sqrt(T / (2 rho A)) / P``) for every feasible
+    design; they are physical efficiencies only where ``T > 0`` and ``P > 0``,
+    which every feasible BILD design satisfies, and the text tables print
+    "n/a" elsewhere.
     """
 
     values: dict = dataclasses.field(repr=False)
@@ -117,6 +140,8 @@ class DesignResult:
     root_chord_correction: float | None
     polar: Polar = dataclasses.field(repr=False)
     is_batch: bool = True
+    feasible: np.ndarray | bool = True
+    status: np.ndarray | str = "ok"
 
     UNITS: ClassVar[dict] = {"radii": "m", "radial_fractions": None, **DISTRIBUTION_UNITS, **INPUT_UNITS,
                              **NODE_OUTPUT_UNITS}
@@ -146,7 +171,7 @@ class DesignResult:
                 return self
             raise IndexError(f"a single design has only index 0, got {index!r}")
         if isinstance(index, slice):
-            return dataclasses.replace(self, values={name: value[index] for name, value in self.values.items()})
+            return self._take(np.arange(len(self))[index])
         if not isinstance(index, (numbers.Integral, np.integer)):
             raise TypeError(f"design index must be an integer or a slice, got {type(index).__name__}")
         n = len(self)
@@ -154,7 +179,30 @@ class DesignResult:
             raise IndexError(f"design index {index} out of range for {n} designs")
         single = {name: np.array(value[index]) if name in _DISTRIBUTIONS else float(value[index])
                   for name, value in self.values.items()}
-        return dataclasses.replace(self, values=single, is_batch=False)
+        return dataclasses.replace(self, values=single, is_batch=False, feasible=bool(self._mask()[index]),
+                                   status=str(self._statuses()[index]))
+
+    def _mask(self):
+        return np.broadcast_to(np.asarray(self.feasible, dtype=bool), (len(self),))
+
+    def _statuses(self):
+        return np.broadcast_to(np.asarray(self.status, dtype=object), (len(self),))
+
+    def _take(self, indices):
+        """The designs ``indices`` (an integer array) of a batch, as a batch."""
+        return dataclasses.replace(self, values={name: value[indices] for name, value in self.values.items()},
+                                   feasible=self._mask()[indices].copy(), status=self._statuses()[indices].copy())
+
+    def feasible_designs(self):
+        """The feasible designs of a batch, as a batch (in order; ``result.feasible`` picks them).
+
+        A single design is returned as is if it is feasible; otherwise ValueError.
+        """
+        if not self.is_batch:
+            if not self.feasible:
+                raise ValueError(f"this design is infeasible: {self.status}")
+            return self
+        return self._take(np.flatnonzero(self._mask()))
 
     def __iter__(self):
         for i in range(len(self)):
@@ -168,7 +216,8 @@ class DesignResult:
     # -- export ---------------------------------------------------------------------------------
     def to_dict(self):
         """Every quantity as a dict (numpy arrays or floats; units in :attr:`UNITS`) plus the configuration."""
-        return {**self.values, "num_blades": self.num_blades, "airfoil": self.airfoil,
+        return {**self.values, "feasible": self.feasible, "status": self.status,
+                "num_blades": self.num_blades, "airfoil": self.airfoil,
                 "loss_model": self.loss_model, "chord_form": self.chord_form,
                 "root_chord_correction": self.root_chord_correction}
 
@@ -181,6 +230,9 @@ class DesignResult:
             Design of a batch (required for a batch of more than one design).
         """
         design = self._single(index)
+        if not design.feasible:
+            raise ValueError(f"design {0 if index is None else index} is infeasible and has no geometry: "
+                             f"{design.status}")
         return RotorGeometry(radii=design.radii, chord=design.chord, twist=design.twist,
                              radius=design.radius, hub_radius=design.hub_radius,
                              num_blades=design.num_blades, airfoil=design.airfoil,
@@ -208,6 +260,7 @@ class DesignResult:
             The files written.
         """
         path = Path(path)
+        self._require_feasible()
         if not self.is_batch:
             return [write_csv(path, self.geometry())]
         digits = len(str(len(self) - 1))
@@ -226,6 +279,7 @@ class DesignResult:
         -------
         pathlib.Path
         """
+        self._require_feasible()
         geometries, extras = [], []
         for design in self:
             geometries.append(design.geometry())
@@ -235,6 +289,12 @@ class DesignResult:
                            "root_chord_correction": design.root_chord_correction,
                            "performance": perf, "distributions": dist})
         return write_json(path, geometries, extras=extras)
+
+    def _require_feasible(self):
+        bad = np.flatnonzero(~self._mask())
+        if bad.size:
+            raise ValueError(f"{bad.size} of {len(self)} designs are infeasible (first: design {bad[0]}, "
+                             f"{self._statuses()[bad[0]]}); write result.feasible_designs() instead")
 
     # -- text output ----------------------------------------------------------------------------
     def station_table(self, index=None):
@@ -270,7 +330,8 @@ def _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius
 
 def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_radius_ratio=0.2,
                  ref_radius_ratio=0.5, ref_chord=0.15, altitude=0.0, num_blades=3, airfoil="naca4412",
-                 num_radial=30, loss_model="tip_hub", chord_form="thrust", root_chord_correction=None):
+                 num_radial=30, loss_model="tip_hub", chord_form="thrust", root_chord_correction=None,
+                 on_infeasible="raise"):
     """Design the ideal rotor(s) for given operating points with the BILD method (paper Alg. 1).
 
     Scalars give one design; lists or 1-D arrays (broadcast against each
@@ -308,6 +369,16 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         Back-compute the chord from the thrust (Eq. (31)) or the torque balance.
     root_chord_correction : float, optional
         ``k`` of the root-chord correction, Eq. (32); None (default) for none.
+    on_infeasible : {'raise', 'skip'}
+        What to do with designs whose ideal loading does not exist (the
+        paper's Assumption 3 fails at a station, or a hover rotor cannot load
+        any station).  ``'raise'`` (default): one AnalysisError counting them
+        and naming the first 10 with their reasons.  ``'skip'``: return the
+        whole batch with ``result.feasible`` and ``result.status``; the
+        infeasible designs' outputs are NaN (their inputs are kept), and
+        ``result.feasible_designs()`` is the feasible subset.  Either way the
+        batch runs once, vectorised, and a feasible design's values are
+        bitwise those of a batch without the infeasible ones.
 
     Returns
     -------
@@ -318,7 +389,8 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     ValueError
         For invalid inputs; the message names the argument (and the design of a batch).
     openmdao.api.AnalysisError
-        If the BILD model cannot be solved for some design.
+        With ``on_infeasible='raise'``, if some design is infeasible (or, not
+        expected for valid inputs, if the BILD model fails).
     """
     if v_axial is not None and advance_ratio is not None:
         raise ValueError("give either v_axial [m/s] or advance_ratio, not both")
@@ -328,6 +400,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     num_radial = validation.integer("num_radial", num_radial)
     validation.choice("loss_model", loss_model, LOSS_MODELS)
     validation.choice("chord_form", chord_form, CHORD_FORMS)
+    validation.choice("on_infeasible", on_infeasible, ON_INFEASIBLE)
     if root_chord_correction is not None:
         root_chord_correction = float(validation.positive("root_chord_correction", root_chord_correction,
                                                           hint="k of Eq. (32), or None", ndim=(0,)))
@@ -341,16 +414,23 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     # reuses the set-up problem on repeated calls.
     prob = bild_problem(num_nodes=nn, num_radial=num_radial, num_blades=num_blades, airfoil=airfoil,
                         loss_model=loss_model, chord_form=chord_form, root_chord_correction=root_chord_correction,
-                        input_mode=input_mode)
+                        input_mode=input_mode, on_infeasible="flag")
     polar = prob.model.options["polar"]
     for name, arr in values.items():
         prob.set_val(name, arr, units=INPUT_UNITS[name])
     prob.run_model()
 
-    outputs = {name: np.array(prob.get_val(name, units=units))
-               for name, units in {**DISTRIBUTION_UNITS, **NODE_OUTPUT_UNITS}.items()}
+    infeasible = prob.model.feasibility.infeasible
+    if on_infeasible == "raise" and np.any(infeasible):
+        raise om.AnalysisError(f"BILD: {prob.model.feasibility.message(noun='design', limit=10)}\n  "
+                               "(design_rotor(..., on_infeasible='skip') returns the whole batch with "
+                               "result.feasible and result.status)")
+    # Infeasible designs hold placeholder values in the model: NaN in the result.
+    outputs = {name: np.where(infeasible if np.ndim(value) == 1 else infeasible[:, None], np.nan, value)
+               for name, value in ((name, np.array(prob.get_val(name, units=units)))
+                                   for name, units in {**DISTRIBUTION_UNITS, **NODE_OUTPUT_UNITS}.items())}
     for name in ("thrust", "torque", "chord", "twist"):
-        bad = ~np.isfinite(outputs[name])
+        bad = ~np.isfinite(outputs[name]) & (~infeasible if outputs[name].ndim == 1 else ~infeasible[:, None])
         if np.any(bad):
             designs = np.unique(np.nonzero(bad)[0])
             raise om.AnalysisError(f"BILD returned non-finite {name} for design(s) {designs[:10].tolist()}")
@@ -364,5 +444,6 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     ordered.update({name: outputs[name] for name in NODE_OUTPUT_UNITS})
     result = DesignResult(values=ordered, num_blades=num_blades, airfoil=getattr(polar, "name", type(polar).__name__),
                           loss_model=loss_model, chord_form=chord_form,
-                          root_chord_correction=root_chord_correction, polar=polar, is_batch=True)
+                          root_chord_correction=root_chord_correction, polar=polar, is_batch=True,
+                          feasible=~infeasible, status=prob.model.feasibility.status())
     return result if is_batch else result[0]

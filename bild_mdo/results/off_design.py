@@ -25,14 +25,18 @@ Reynolds-independent :class:`~bild_mdo.airfoil.AnalyticPolar`; with the NACA
 from __future__ import annotations
 
 import dataclasses
+import re
+import warnings
 from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
+import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.bem.analyze import BEMResult, analyze_rotor
+from bild_mdo.bem.flow_states import INVALID_STATES, ON_INVALID, PROPELLER, BEMStateWarning, describe_invalid
 from bild_mdo.bem.metrics import METRICS
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.io.files import read_geometry
@@ -67,8 +71,22 @@ class OffDesignResult:
         Altitude of the ISA state (m).
     design_advance_ratio : float or None
         J of the design point, if the geometry knows it.
-    bem : BEMResult
-        The full BEM result (distributions of shape ``(n, nr)``).
+    bem : BEMResult or None
+        The full BEM result (distributions of shape ``(n, nr)``); None when
+        some point failed (then see :attr:`status`).
+    status : ndarray of str
+        ``'ok'``, or why the point failed (its performance values are NaN).
+    flow_state : ndarray of int or None
+        BEM flow-state code of every station, shape ``(n, nr)``
+        (:mod:`bild_mdo.bem.flow_states`); -1 at failed points.
+
+    Notes
+    -----
+    ``efficiency`` and ``figure_of_merit`` hold the formulas' values
+    (``eta = T V / P``, ``FM = T sqrt(T / (2 rho A)) / P``) at every point;
+    they are physical efficiencies only where ``T > 0`` and ``P > 0``: a
+    windmilling point (``T < 0``, ``P < 0``) can give ``eta > 1``.  The text
+    table prints "n/a" there.
     """
 
     sweep: str
@@ -80,6 +98,17 @@ class OffDesignResult:
     altitude: float = 0.0
     design_advance_ratio: float | None = None
     bem: BEMResult | None = dataclasses.field(default=None, repr=False)
+    status: np.ndarray | None = dataclasses.field(default=None, repr=False)
+    flow_state: np.ndarray | None = dataclasses.field(default=None, repr=False)
+
+    def __post_init__(self):
+        if self.status is None:
+            object.__setattr__(self, "status", np.full(self.rpm.size, "ok", dtype=object))
+
+    @property
+    def ok(self):
+        """ndarray of bool: True at the points that were analysed (``status == 'ok'``)."""
+        return np.asarray(self.status == "ok", dtype=bool)
 
     UNITS: ClassVar[dict] = {**POINT_UNITS, **{metric.name: metric.units for metric in METRICS}}
 
@@ -119,7 +148,8 @@ class OffDesignResult:
     def to_dict(self):
         """The per-point arrays (units in :attr:`UNITS`) and the sweep metadata."""
         data = {name: getattr(self, name) for name in self.UNITS}
-        data.update(sweep=self.sweep, altitude=self.altitude, design_advance_ratio=self.design_advance_ratio)
+        data.update(sweep=self.sweep, altitude=self.altitude, design_advance_ratio=self.design_advance_ratio,
+                    status=self.status)
         return data
 
     def to_csv(self, path):
@@ -130,8 +160,9 @@ class OffDesignResult:
         pathlib.Path
         """
         names = list(self.UNITS)
-        lines = [f"# bild-mdo off-design sweep over {self.sweep}, altitude [m]: {self.altitude:g}",
-                 ",".join(unit_key(n, self.UNITS[n]) for n in names)]
+        lines = [f"# bild-mdo off-design sweep over {self.sweep}, altitude [m]: {self.altitude:g}"]
+        lines += [f"# point {i} failed (values nan): {self.status[i]}" for i in np.flatnonzero(~self.ok)]
+        lines.append(",".join(unit_key(n, self.UNITS[n]) for n in names))
         for i in range(len(self)):
             lines.append(",".join(f"{float(getattr(self, n)[i]):.10g}" for n in names))
         path = Path(path)
@@ -143,6 +174,7 @@ class OffDesignResult:
         lines = [f"Off-design BEM analysis: {self.geometry.name}, B = {self.geometry.num_blades}, "
                  f"R = {self.geometry.radius:g} m, altitude {self.altitude:g} m, swept {self.sweep}"]
         lines += tables.sweep_table(self)
+        lines += tables.status_footer(self, "points")
         best = self.max_efficiency_point
         if best is None:
             lines.append("maximum efficiency: none (no point with forward speed and positive thrust)")
@@ -181,8 +213,15 @@ def _sweep_points(name, values, check, units):
 
 
 def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm=None, altitude=None,
-                     polar=None, loss_model=None, design=None):
+                     polar=None, loss_model=None, design=None, on_invalid="warn"):
     """BEM analysis of one fixed blade over a range of advance ratios or rotor speeds, in one vectorised run.
+
+    A point whose analysis fails (no torque at all, or, with
+    ``on_invalid='raise'``, stations outside the momentum model's flow states)
+    does not stop the sweep: it is recorded in ``result.status`` with its
+    reason and its values are NaN.  The sweep is one vectorised run; only
+    where it raises (no torque at some point) are the failing points
+    isolated by splitting the batch in halves (a few more runs).
 
     Parameters
     ----------
@@ -207,6 +246,10 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
         Default: the design's.
     design : int, optional
         Design of a batch DesignResult or multi-design JSON file.
+    on_invalid : {'warn', 'raise', 'ignore'}
+        Stations in a flow state the momentum model does not represent
+        (:func:`~bild_mdo.bem.analyze.analyze_rotor`): one warning naming them
+        (default), their points recorded as failed, or nothing.
 
     Returns
     -------
@@ -216,11 +259,10 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     ------
     ValueError
         For invalid inputs.
-    openmdao.api.AnalysisError
-        If the BEM inflow solve fails at some point.
     """
     if (advance_ratios is None) == (rpms is None):
         raise ValueError("give exactly one of advance_ratios (J sweep) and rpms (rotor-speed sweep)")
+    validation.choice("on_invalid", on_invalid, ON_INVALID)
     geom = _blade(geometry, design)
     point = geom.design_point
     polar = _default_polar(geom) if polar is None else resolve_polar(polar)
@@ -246,8 +288,62 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
         j = velocities / (speeds * revs_per_diameter)
         sweep = "rpm"
 
-    bem = analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, speeds, velocities,
-                        geom.num_blades, polar, altitude=altitude, loss_model=loss_model, radii=geom.radii)
-    performance = {metric.name: np.atleast_1d(getattr(bem, metric.name)) for metric in METRICS}
+    def run(points, mode):
+        return analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, speeds[points],
+                             velocities[points], geom.num_blades, polar, altitude=altitude, loss_model=loss_model,
+                             radii=geom.radii, on_invalid=mode)
+
+    r_over_r = np.broadcast_to(np.asarray(geom.radii) / geom.radius, (speeds.size, np.size(geom.radii)))
+    bem, performance, flow_state, status = _analyze_points(run, speeds.size, on_invalid, r_over_r)
     return OffDesignResult(sweep=sweep, advance_ratio=j, v_axial=velocities, rpm=speeds, performance=performance,
-                           geometry=geom, altitude=altitude, design_advance_ratio=point.get("advance_ratio"), bem=bem)
+                           geometry=geom, altitude=altitude, design_advance_ratio=point.get("advance_ratio"), bem=bem,
+                           status=status, flow_state=flow_state)
+
+
+def _one_line(message):
+    """An error text as one line, without OpenMDAO's component prefix or the sub-run's node number."""
+    message = re.sub(r"^'[^']*' <class \w+>: Error calling \w+\(\), ", "", " ".join(str(message).split()))
+    return message.replace("node 0, ", "")
+
+
+def _analyze_points(run, count, on_invalid, r_over_r):
+    """Analyse every point in one run; isolate points that raise by bisection.
+
+    Returns ``(bem or None, performance, flow_state, status)``.  Stations in
+    invalid flow states are found from ``flow_state`` (one run with
+    ``on_invalid='ignore'``): one warning for ``'warn'``, failed points for
+    ``'raise'``.
+    """
+    status = np.full(count, "ok", dtype=object)
+    performance = {metric.name: np.full(count, np.nan) for metric in METRICS}
+    flow_state, bem = None, None
+    pending = [np.arange(count)]
+    while pending:
+        points = pending.pop()
+        try:
+            result = run(points, "ignore")
+        except om.AnalysisError as err:
+            if points.size == 1:
+                status[points[0]] = _one_line(err)
+            else:
+                pending += [points[: points.size // 2], points[points.size // 2:]]
+            continue
+        states = np.atleast_2d(result.flow_state)
+        if flow_state is None:
+            flow_state = np.full((count, states.shape[1]), -1, dtype=int)
+        flow_state[points] = states
+        for name, values in performance.items():
+            values[points] = getattr(result, name)
+        bem = result if points.size == count else None
+    if flow_state is not None and on_invalid != "ignore":
+        invalid = np.flatnonzero(np.any(np.isin(flow_state, INVALID_STATES), axis=1))
+        if on_invalid == "warn" and invalid.size:
+            warnings.warn(describe_invalid(np.where(flow_state < 0, PROPELLER, flow_state), r_over_r),
+                          BEMStateWarning, stacklevel=3)
+        elif invalid.size:
+            for i in invalid:  # messages only; the analysis ran once for all points
+                status[i] = _one_line(describe_invalid(flow_state[i:i + 1], r_over_r[i:i + 1]))
+            for values in performance.values():
+                values[invalid] = np.nan
+            bem = None
+    return bem, performance, flow_state, status

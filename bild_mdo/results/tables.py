@@ -5,6 +5,13 @@ The functions read a result's quantities by name, so they serve
 :class:`~bild_mdo.results.off_design.OffDesignResult` alike.  Column titles
 and display scales of the performance metrics come from the registry
 :data:`~bild_mdo.bem.metrics.METRICS`.
+
+The efficiency and the figure of merit are printed only where they mean
+something, ``T > 0`` and ``P > 0`` (:data:`PROPULSIVE_ONLY`); elsewhere (a
+windmill, a brake, a rotor that absorbs no power) the cell reads "n/a",
+although the result objects keep the formulas' values.  Designs or points
+that are infeasible or failed (``result.feasible`` / ``result.status``) print
+their reason instead of numbers.
 """
 from __future__ import annotations
 
@@ -20,10 +27,52 @@ INPUT_TITLES = {"advance_ratio": "J [-]", "v_axial": "V [m/s]", "rpm": "rpm", "r
 DESIGN_BATCH_COLUMNS = ("advance_ratio", "v_axial", "rpm", "radius", "ref_chord", "altitude", "thrust",
                         "torque", "power", "efficiency", "figure_of_merit", "thrust_coefficient", "solidity")
 
+#: Operating-point columns of an off-design sweep (printed for failed points too).
+POINT_TITLES = ("advance_ratio", "v_axial", "rpm")
+
 #: Columns of an off-design sweep and their number formats.
 SWEEP_COLUMNS = {"advance_ratio": ".4f", "v_axial": ".3f", "rpm": ".1f", "thrust": ".5g", "torque": ".5g",
                  "power": ".5g", "efficiency": ".4f", "figure_of_merit": ".4f", "thrust_coefficient": ".5f",
                  "torque_coefficient": ".6f", "power_coefficient": ".5f"}
+
+#: Metrics printed only where T > 0 and P > 0 (else "n/a").
+PROPULSIVE_ONLY = ("efficiency", "figure_of_merit")
+
+
+def propulsive(result):
+    """Boolean array: T > 0 and P > 0 (where eta and FM are efficiencies), per design or point."""
+    return (np.asarray(result.thrust) > 0.0) & (np.asarray(result.power) > 0.0)
+
+
+def metric_cell(result, name, index, scale=1.0, fmt=None, width=11, useful=None):
+    """A table cell of quantity ``name`` at ``index``: "n/a" for eta and FM unless T > 0 and P > 0."""
+    if name in PROPULSIVE_ONLY:
+        ok = propulsive(result) if useful is None else useful
+        if not np.ndim(ok) == 0:
+            ok = ok[index]
+        if not ok:
+            return f"{'n/a':>{width}s}"
+    value = np.asarray(getattr(result, name))
+    value = float(value if value.ndim == 0 else value[index]) * scale
+    return format_cell(value, width) if fmt is None else f"{value:>{width}{fmt}}"
+
+
+def _statuses(result):
+    """Per-row status strings of a batch result ('ok' where feasible)."""
+    return np.broadcast_to(np.asarray(getattr(result, "status", "ok"), dtype=object), (len(result),))
+
+
+def status_footer(result, noun):
+    """Lines counting the rows that are not 'ok', by reason (empty if all are)."""
+    status = _statuses(result)
+    bad = status != "ok"
+    if not np.any(bad):
+        return []
+    reasons, counts = np.unique(status[bad].astype(str), return_counts=True)
+    lines = [f"{int(np.sum(bad))} of {len(result)} {noun} infeasible or failed (values NaN):"]
+    lines += [f"  {count} x {reason}" for reason, count in zip(reasons, counts)]
+    return lines
+
 
 # The summary of one design: (label, quantity, display units); a quantity of None starts a section, a pair
 # of quantities shares a row.  Quantities in kW are scaled by the metric's display_scale.
@@ -78,27 +127,33 @@ def design_configuration(result):
 
 
 def design_batch_table(result, max_rows):
-    """One row per design of a batch (the middle elided beyond ``max_rows``)."""
+    """One row per design of a batch (the middle elided beyond ``max_rows``); infeasible rows say so."""
     columns = [(name, *column(name)) for name in DESIGN_BATCH_COLUMNS]
     lines = [f"{len(result)} designs", f"{'#':>6} " + " ".join(f"{title:>11}" for _, title, _ in columns)]
+    useful, status = propulsive(result), _statuses(result)
     for i in shown_rows(len(result), max_rows):
         if i is None:
             lines.append(f"{'...':>6}")
             continue
-        lines.append(f"{i:>6d} " + " ".join(format_cell(getattr(result, name)[i] * scale)
-                                             for name, _, scale in columns))
-    return lines
+        cells = [metric_cell(result, name, i, scale, useful=useful) for name, _, scale in columns
+                 if name in INPUT_TITLES or status[i] == "ok"]
+        lines.append(f"{i:>6d} " + " ".join(cells) + ("" if status[i] == "ok" else "  infeasible"))
+    return lines + status_footer(result, "designs")
 
 
 def single_design_table(design):
     """Label / value / units lines of one design's inputs, reference point and performance."""
-    lines = []
+    status = getattr(design, "status", "ok")
+    lines = [] if status == "ok" else [f"INFEASIBLE (values NaN): {status}"]
+    useful = bool(propulsive(design))
     for label, quantity, units in _SINGLE_DESIGN_ROWS:
         if quantity is None:
             lines.append(f"{label}:")
         elif isinstance(quantity, tuple):
             cl_star, cd_star = (getattr(design, name) for name in quantity)
             lines.append(f"  {label:<32s} {f'{cl_star:.4f}, {cd_star:.5f}':>14s} {units}")
+        elif quantity in PROPULSIVE_ONLY and not useful:
+            lines.append(f"  {label:<32s} {'n/a':>14s} {units}  (needs T > 0 and P > 0)")
         else:
             scale = METRICS_BY_NAME[quantity].display_scale if units == "kW" else 1.0
             lines.append(f"  {label:<32s} {getattr(design, quantity) * scale:>14.6g} {units}")
@@ -120,6 +175,9 @@ def sweep_table(result):
     """One row per operating point of an off-design sweep."""
     columns = [(name, *column(name), fmt) for name, fmt in SWEEP_COLUMNS.items()]
     lines = [" ".join(f"{title:>10}" for _, title, _, _ in columns)]
+    useful, status = propulsive(result), _statuses(result)
     for i in range(len(result)):
-        lines.append(" ".join(f"{getattr(result, name)[i] * scale:>10{fmt}}" for name, _, scale, fmt in columns))
+        cells = [metric_cell(result, name, i, scale, fmt, width=10, useful=useful)
+                 for name, _, scale, fmt in columns if name in POINT_TITLES or status[i] == "ok"]
+        lines.append(" ".join(cells) + ("" if status[i] == "ok" else f"  failed: {status[i]}"))
     return lines

@@ -7,7 +7,7 @@ and the per-case optimisation function as arguments
 are drawn by :mod:`bild_mdo.plots.verification`; the ``bild-mdo verify``
 command is :mod:`bild_mdo.cli.verify`.
 """
-from .cases import Case, SweepSpec
+from .cases import Case, CaseSetupError, SweepSpec
 from .executors import run_tasks
 from .optimality import BildTrim, OptimalityCheck, optimality_check, trimmed_bild_energy_loss
 from .runner import (
@@ -20,10 +20,11 @@ from .runner import (
     verification_table,
 )
 from .statistics import PAPER_TABLE3, QuantityStats, Table3, format_table3, table3
-from .store import RESULT_KEYS, ResultsStore, StoreError
+from .store import RESULT_KEYS, ResultsStore, StoreBusyError, StoreError, StoreFullError
 
 __all__ = [
     "Case",
+    "CaseSetupError",
     "SweepSpec",
     "run_tasks",
     "BildTrim",
@@ -45,4 +46,6 @@ __all__ = [
     "RESULT_KEYS",
     "ResultsStore",
     "StoreError",
+    "StoreBusyError",
+    "StoreFullError",
 ]

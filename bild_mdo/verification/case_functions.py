@@ -19,8 +19,10 @@ import openmdao.api as om
 
 from bild_mdo.bem.metrics import VERIFIED_METRICS
 from bild_mdo.bild.problem import bild_problem
-from bild_mdo.optimization.problem import build_optimization_problem
+from bild_mdo.optimization.problem import DEFAULT_MAXITER, DEFAULT_TOL, build_optimization_problem, make_driver
 from bild_mdo.optimization.run import optimize_rotor
+
+from .cases import CaseSetupError
 
 #: Inputs that must be equal for cases to share one batched BILD model.
 _MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
@@ -52,11 +54,28 @@ def _set_bild_inputs(prob, cases):
     prob.set_val("altitude", column("altitude"), units="m")
 
 
+def require_optimizer(optimizer):
+    """Raise ImportError (with the install hint) unless ``optimizer`` can run here.
+
+    Makes the optimiser's OpenMDAO driver once, which imports its package
+    (cyipopt for 'ipopt', pyOptSparse for 'snopt'); costs milliseconds, so a
+    sweep checks it before any case runs.
+
+    Parameters
+    ----------
+    optimizer : {'slsqp', 'ipopt', 'snopt'}
+    """
+    make_driver(optimizer, DEFAULT_TOL[optimizer], DEFAULT_MAXITER[optimizer])
+
+
 def bild_batch(cases):
     """BILD designs of many cases in one vectorised run (``num_nodes = len(cases)``).
 
     Cases that differ in the number of stations, blades or airfoil are run
-    as separate batches (one per combination; the sweep has one).
+    as separate batches (one per combination; the sweep has one).  When a
+    batch fails (one infeasible design fails the whole vectorised model), it
+    is split in halves until every failing case is alone, so each failed case
+    gets its own reason and the other cases their designs.
 
     Parameters
     ----------
@@ -71,32 +90,46 @@ def bild_batch(cases):
         W, ``chord`` in m and ``twist`` in rad at the stations) and
         ``thrust`` (N), the thrust target of the optimisation.  ``run_time``
         is left to the runner (batch wall time divided by the number of
-        cases).  A batch whose model raises marks its cases not converged with
-        the error text.
+        cases).  A case whose design fails is marked not converged with the
+        error text.
     """
     results = [None] * len(cases)
-    for (num_radial, num_blades, airfoil), indices in _group_cases(cases).items():
-        batch = [cases[i] for i in indices]
-        try:
-            prob = bild_problem(len(batch), int(num_radial), int(num_blades), airfoil)
-            _set_bild_inputs(prob, batch)
-            prob.run_model()
-        except (om.AnalysisError, ValueError) as exc:
-            for i in indices:
-                results[i] = {"converged": False, "error": f"BILD failed for this batch: {exc}"}
-            continue
-        values = {name: prob.get_val(name) for name in VERIFIED_METRICS + ("thrust",)}
-        chord = prob.get_val("chord", units="m")
-        twist = prob.get_val("twist", units="rad")
-        for k, i in enumerate(indices):
-            row = {name: float(values[name][k]) for name in VERIFIED_METRICS}
-            finite = all(np.isfinite(v) for v in row.values()) and np.all(np.isfinite(chord[k]))
-            row.update(chord=chord[k].copy(), twist=twist[k].copy(), thrust=float(values["thrust"][k]),
-                       converged=bool(finite))
-            if not finite:
-                row["error"] = "BILD returned non-finite values"
-            results[i] = row
+    for indices in _group_cases(cases).values():
+        _bild_group(cases, indices, results)
     return results
+
+
+def _bild_group(cases, indices, results):
+    """BILD for ``cases[i]`` for i in ``indices``, bisecting a failed batch down to the failing cases."""
+    batch = [cases[i] for i in indices]
+    num_radial, num_blades, airfoil = (batch[0].inputs[k] for k in _MODEL_KEYS)
+    try:
+        prob = bild_problem(len(batch), int(num_radial), int(num_blades), airfoil)
+    except (ValueError, TypeError) as exc:
+        raise CaseSetupError(f"the BILD model cannot be set up for {num_blades} blades, {num_radial} "
+                             f"stations and airfoil {airfoil!r}: {exc}") from exc
+    try:
+        _set_bild_inputs(prob, batch)
+        prob.run_model()
+    except (om.AnalysisError, ValueError, ArithmeticError) as exc:
+        if len(indices) > 1:
+            half = len(indices) // 2
+            _bild_group(cases, indices[:half], results)
+            _bild_group(cases, indices[half:], results)
+        else:
+            results[indices[0]] = {"converged": False, "error": f"BILD failed: {' '.join(str(exc).split())}"}
+        return
+    values = {name: prob.get_val(name) for name in VERIFIED_METRICS + ("thrust",)}
+    chord = prob.get_val("chord", units="m")
+    twist = prob.get_val("twist", units="rad")
+    for k, i in enumerate(indices):
+        row = {name: float(values[name][k]) for name in VERIFIED_METRICS}
+        finite = all(np.isfinite(v) for v in row.values()) and np.all(np.isfinite(chord[k]))
+        row.update(chord=chord[k].copy(), twist=twist[k].copy(), thrust=float(values["thrust"][k]),
+                   converged=bool(finite))
+        if not finite:
+            row["error"] = "BILD returned non-finite values"
+        results[i] = row
 
 
 def time_single_bild_design(case, repeats=20):
@@ -163,13 +196,26 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
     -------
     dict
         The keys of :data:`~bild_mdo.verification.store.RESULT_KEYS` at the
-        optimum, ``converged``, ``status`` and ``iterations``.  The run time
+        optimum, ``converged``, ``status`` and ``iterations``.
+
+    Raises
+    ------
+    ImportError
+        If the optimiser's package is missing.
+    CaseSetupError
+        If the optimisation problem cannot be set up; the runner does not
+        store such a case, so a rerun retries it.  The run time
         is left to the runner (wall time of this call, including the one-off
         problem set-up of a worker's first case).
     """
     inputs = case.inputs
     optimizer = case.optimizer if optimizer is None else optimizer
-    prob = _cached_problem(inputs, optimizer, parameterization, tol)
+    try:
+        prob = _cached_problem(inputs, optimizer, parameterization, tol)
+    except ImportError:
+        raise
+    except Exception as exc:  # any failure to build the model is a set-up error, not a result of this case
+        raise CaseSetupError(f"the BEM optimisation problem cannot be set up: {type(exc).__name__}: {exc}") from exc
     result = optimize_rotor(inputs["v_axial"], inputs["rpm"], inputs["radius"], inputs["hub_radius"],
                             bild_result["thrust"], inputs["altitude"], problem=prob, restarts=restarts, initial=initial,
                             bild_chord=bild_result.get("chord"), bild_twist=bild_result.get("twist"),

@@ -25,6 +25,61 @@ CASE_LAYOUT_VERSION = 1
 # Swept axes in case-id order: the first axis varies slowest.
 AXES = ("advance_ratio", "radius", "altitude", "reference_chord")
 
+#: Largest number of levels per axis: 15**4 = 50,625 cases (five times the paper's sweep).
+MAX_LEVELS = 15
+# Measured on the paper's sweep (levels=10, 30 stations): peak memory per case of the
+# batched BILD run plus the stored rows, and wall time of one warm-started SLSQP optimisation.
+MEMORY_PER_CASE = 80.0e3  # bytes
+OPTIMIZATION_TIME_PER_CASE = 0.5  # s
+
+
+class CaseSetupError(ValueError):
+    """A case could not be set up (optimiser missing, model set-up failed); it is not stored, so a rerun retries it."""
+
+
+def check_workers(workers):
+    """Return ``workers`` as an int, or raise ValueError unless it is an integer >= 1.
+
+    Parameters
+    ----------
+    workers : int
+        Number of local worker processes (1 = in this process).
+    """
+    if isinstance(workers, bool) or not isinstance(workers, (int, np.integer)) or workers < 1:
+        raise ValueError(f"workers must be an integer >= 1 (1 runs in this process), got {workers!r}")
+    return int(workers)
+
+
+def _format_bytes(num):
+    for unit, size in (("PB", 1e15), ("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+        if num >= size:
+            return f"{num / size:.3g} {unit}"
+    return f"{num / 1e3:.3g} kB"
+
+
+def _format_cpu_time(seconds):
+    for unit, size in (("years", 365.25 * 86400.0), ("days", 86400.0), ("hours", 3600.0), ("minutes", 60.0)):
+        if seconds >= size:
+            return f"{seconds / size:.3g} CPU-{unit}"
+    return f"{seconds:.3g} CPU-seconds"
+
+
+def sweep_estimate(levels):
+    """Estimated peak memory and CPU time of a sweep with ``levels`` levels per axis.
+
+    Parameters
+    ----------
+    levels : int
+
+    Returns
+    -------
+    str
+        For example ``'10,000 cases: about 800 MB of memory and 1.39 CPU-hours of BEM optimisation'``.
+    """
+    cases = int(levels) ** len(AXES)
+    return (f"{cases:,} cases: about {_format_bytes(cases * MEMORY_PER_CASE)} of memory and "
+            f"{_format_cpu_time(cases * OPTIMIZATION_TIME_PER_CASE)} of BEM optimisation")
+
 
 @dataclass(frozen=True)
 class Case:
@@ -101,6 +156,9 @@ class SweepSpec:
     def __post_init__(self):
         if isinstance(self.levels, bool) or not isinstance(self.levels, (int, np.integer)) or self.levels < 2:
             raise ValueError(f"levels must be an integer >= 2 (each axis spans its range), got {self.levels!r}")
+        if self.levels > MAX_LEVELS:
+            raise ValueError(f"levels={self.levels} is too large: {sweep_estimate(self.levels)}; "
+                             f"levels <= {MAX_LEVELS} ({sweep_estimate(MAX_LEVELS)})")
         for name in AXES:
             lo, hi = self._range(name)
             if not (np.isfinite(lo) and np.isfinite(hi) and lo <= hi):

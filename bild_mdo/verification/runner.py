@@ -21,22 +21,31 @@ The science is plugged in through two functions:
 
 Both must be module-level functions (picklable) to run in worker processes or
 on a Dask cluster.
+
+A case whose optimisation could not even be set up (:class:`CaseSetupError`,
+or an ImportError: a missing optimiser) is not stored, so a rerun retries it;
+:func:`run_sweep` raises one error counting such cases after the others ran.
+Warnings raised while a case runs, in this process or in a worker, are
+collected and shown once per sweep (:mod:`~bild_mdo.verification.warning_relay`).
 """
 import functools
 import os
 import sys
 import time
 import traceback
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 import openmdao.api as om
 from tqdm import tqdm
 
+from .cases import CaseSetupError, check_workers
 from .executors import check_picklable, connect_dask, run_tasks
 from .optimality import optimality_check
 from .statistics import table3
 from .store import INPUT_COLUMNS, RESULT_ARRAYS, RESULT_KEYS, ResultsStore
+from .warning_relay import WarningRelay, recorded_warnings
 
 ERROR_TEXT_LIMIT = 4000
 
@@ -57,6 +66,12 @@ class SweepResult:
         Cases computed and stored by this call, in completion order.
     num_failed : int
         Of those, cases whose optimisation (or BILD) did not converge or raised.
+    setup_errors : dict
+        Case id -> error text of cases not run because of a set-up error (not stored).
+    recomputed_ids : list of int
+        Stored cases whose row failed its checksum; they were deleted and computed again.
+    warnings : list of str
+        The distinct warnings shown during the sweep.
     bild_batch_time : float
         Wall time of the batched BILD call (s).
     wall_time : float
@@ -68,6 +83,9 @@ class SweepResult:
     num_skipped: int
     computed_ids: list = field(default_factory=list)
     num_failed: int = 0
+    setup_errors: dict = field(default_factory=dict)
+    recomputed_ids: list = field(default_factory=list)
+    warnings: list = field(default_factory=list)
     bild_batch_time: float = 0.0
     wall_time: float = 0.0
 
@@ -108,12 +126,25 @@ def optimize_task(optimize_fn, payload):
     Returns
     -------
     dict
-        ``{'result': dict or None, 'error': str or None, 'run_time': float}``.
+        ``{'result': dict or None, 'error': str or None, 'run_time': float,
+        'setup_error': bool, 'warnings': list}``; ``setup_error`` marks a case
+        that could not be set up (not to be stored), ``warnings`` holds the
+        warnings the case raised as ``(category, message, filename, lineno)``.
     """
+    with recorded_warnings() as caught:
+        outcome = _optimize_outcome(optimize_fn, payload)
+    outcome["warnings"] = caught
+    return outcome
+
+
+def _optimize_outcome(optimize_fn, payload):
     case, bild_result = payload
     start = time.perf_counter()
     try:
         result = optimize_fn(case, bild_result)
+    except (CaseSetupError, ImportError) as exc:
+        return {"result": None, "error": f"{type(exc).__name__}: {exc}", "run_time": time.perf_counter() - start,
+                "setup_error": True}
     except Exception as exc:
         return {"result": None, "error": _error_text(exc), "run_time": time.perf_counter() - start}
     run_time = time.perf_counter() - start
@@ -179,11 +210,13 @@ def _bild_results(bild_batch_fn, cases):
 def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=None, progress=True, case_ids=None):
     """Run (or resume) a verification sweep into an SQLite results store.
 
-    Cases already in the store are skipped.  BILD runs once for all remaining
-    cases (one batched call); then ``optimize_fn`` runs per case through the
-    chosen executor and each row is committed as soon as its case returns.  An
-    optimisation that raises is stored with ``converged=False`` and the error
-    text; it never stops the sweep.
+    Cases already in the store are skipped; stored rows that fail their
+    checksum are deleted and computed again (with a warning naming them).
+    BILD runs once for all remaining cases (one batched call); then
+    ``optimize_fn`` runs per case through the chosen executor and each row is
+    committed as soon as its case returns.  An optimisation that raises is
+    stored with ``converged=False`` and the error text; it never stops the
+    sweep.  A case that fails to set up is not stored (see the module docstring).
 
     Parameters
     ----------
@@ -212,17 +245,33 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
 
     Raises
     ------
+    ValueError
+        If ``workers`` is not an integer >= 1 (before the store is opened).
     StoreError
-        If ``db_path`` is not a results store of this sweep.
+        If ``db_path`` is not a results store of this sweep, cannot be written,
+        or the disk fills up (``StoreFullError``: the rows stored so far stay,
+        a rerun resumes); ``StoreBusyError`` if another sweep writes to it.
+    CaseSetupError
+        After the sweep, if cases could not be set up (they are not stored).
     """
     start = time.perf_counter()
+    if scheduler is None:
+        workers = check_workers(workers)
     cases = spec.cases(case_ids)
     stream = None if progress is True else progress
     task_fn = functools.partial(optimize_task, optimize_fn)
+    relay = WarningRelay()
     with ResultsStore(db_path, spec) as store:
+        damaged = store.damaged_ids()
+        if damaged:
+            store.drop(damaged)
+            shown = ", ".join(str(cid) for cid in damaged[:10]) + (" ..." if len(damaged) > 10 else "")
+            warnings.warn(f"{len(damaged)} stored cases of '{os.fspath(db_path)}' failed their checksum (damaged on "
+                          f"disk) and are computed again: {shown}", RuntimeWarning, stacklevel=2)
         done = store.done_ids()
         remaining = [case for case in cases if case.case_id not in done]
-        result = SweepResult(db_path=os.fspath(db_path), num_cases=len(cases), num_skipped=len(cases) - len(remaining))
+        result = SweepResult(db_path=os.fspath(db_path), num_cases=len(cases), num_skipped=len(cases) - len(remaining),
+                             recomputed_ids=sorted(set(damaged) & {c.case_id for c in remaining}))
         if remaining:
             # Executor problems surface before the BILD batch, not after it.
             client, owned = None, False
@@ -232,34 +281,52 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
             elif workers != 1:
                 check_picklable(task_fn, "worker processes")
             try:
-                _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result)
+                _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay)
             finally:
                 if owned:
                     client.close()
+    result.warnings = relay.shown
     result.wall_time = time.perf_counter() - start
+    if result.setup_errors:
+        ids = sorted(result.setup_errors)
+        first = " ".join(result.setup_errors[ids[0]].split())
+        raise CaseSetupError(
+            f"{len(ids)} of {len(remaining)} cases could not be set up and are not stored (a rerun retries them); "
+            f"case {ids[0]}: {first}")
     return result
 
 
-def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result):
-    bild, result.bild_batch_time = _bild_results(bild_batch_fn, remaining)
+def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay):
+    with recorded_warnings() as caught:
+        bild, result.bild_batch_time = _bild_results(bild_batch_fn, remaining)
+    relay.show(caught)
     if progress:
         print(f"BILD: {len(remaining)} cases in {result.bild_batch_time:.2f} s; {result.num_skipped} already stored",
               file=stream or sys.stderr)
     bar = _progress_bar(len(remaining), stream) if progress else None
     try:
-        tasks, pending_rows = [], {}
-        for case, (bild_result, bild_clean, bild_time) in zip(remaining, bild):
-            row = _base_row(case, bild_clean, bild_time)
-            if row["bild_converged"]:
-                pending_rows[case.case_id] = row
-                tasks.append((case.case_id, (case, bild_result)))
-            else:
-                # Without a BILD design there is no thrust target for the optimisation.
-                row.update(converged=False, status="BILD failed",
-                           error=str(bild_result.get("error") or "BILD did not converge"))
-                _store(store, row, result, bar)
-        for case_id, outcome, error in run_tasks(task_fn, tasks, workers=workers, scheduler=client):
-            _store(store, _finish_row(pending_rows.pop(case_id), outcome, error), result, bar)
+        with relay.above(bar):
+            tasks, pending_rows = [], {}
+            for case, (bild_result, bild_clean, bild_time) in zip(remaining, bild):
+                row = _base_row(case, bild_clean, bild_time)
+                if row["bild_converged"]:
+                    pending_rows[case.case_id] = row
+                    tasks.append((case.case_id, (case, bild_result)))
+                else:
+                    # Without a BILD design there is no thrust target for the optimisation.
+                    row.update(converged=False, status="BILD failed",
+                               error=str(bild_result.get("error") or "BILD did not converge"))
+                    _store(store, row, result, bar)
+            for case_id, outcome, error in run_tasks(task_fn, tasks, workers=workers, scheduler=client):
+                row = pending_rows.pop(case_id)
+                if outcome is not None:
+                    relay.show(outcome.get("warnings", ()))
+                    if outcome.get("setup_error"):
+                        result.setup_errors[case_id] = outcome["error"]
+                        if bar is not None:
+                            bar.update()
+                        continue
+                _store(store, _finish_row(row, outcome, error), result, bar)
     finally:
         if bar is not None:
             bar.close()

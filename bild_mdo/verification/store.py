@@ -3,12 +3,15 @@
 The parent process is the only writer; workers return their results to it.
 Each row is committed as soon as its case finishes, so a sweep that is killed
 loses at most the cases that were running, and a rerun resumes from
-:meth:`ResultsStore.done_ids`.  The database runs in WAL mode with
+:meth:`ResultsStore.done_ids`.  One sweep writes to a file at a time (an
+advisory lock on the file); every row carries a checksum of its values, so a
+row damaged on disk is found (:meth:`ResultsStore.damaged_ids`) and recomputed.  The database runs in WAL mode with
 ``synchronous=NORMAL``: a committed row survives a crash or kill of the process
 (it could only be lost by a power cut of the machine).  WAL needs a local file
 system; don't put the store on a network share.
 """
 import datetime
+import hashlib
 import json
 import math
 import os
@@ -20,7 +23,11 @@ import numpy as np
 from bild_mdo import __version__
 from bild_mdo.bem.metrics import VERIFIED_METRICS
 
-SCHEMA_VERSION = 1
+from .store_file import (StoreBusyError, StoreError, StoreFullError, acquire_writer_lock, check_store_path,
+                         full_error, is_disk_full, operational_error)
+
+# Version 2 added the per-row checksum; a version-1 store is upgraded when a sweep opens it.
+SCHEMA_VERSION = 2
 META_TABLE = "meta"
 RESULTS_TABLE = "results"
 
@@ -63,12 +70,43 @@ COLUMNS = (
     )
 )
 COLUMN_NAMES = tuple(name for name, _ in COLUMNS)
+# SHA-256 of the row's values (every column above), checked when a sweep opens the store.
+CHECKSUM_COLUMN = "checksum"
+_KINDS = dict(COLUMNS)
 _ARRAY_COLUMNS = frozenset(f"{m}_{a}" for m in METHODS for a in RESULT_ARRAYS)
 _BOOL_COLUMNS = frozenset(("bild_converged", "converged"))
 
 
-class StoreError(ValueError):
-    """The results file cannot be used for this sweep; the message says why and what to do."""
+__all__ = ["ResultsStore", "StoreError", "StoreBusyError", "StoreFullError", "RESULT_KEYS", "SCHEMA_VERSION"]
+
+
+def row_checksum(values):
+    """Checksum of one row: 16 hex digits of the SHA-256 of its values in column order.
+
+    Floats enter exactly (``float.hex``), so any change of a stored bit changes it.
+
+    Parameters
+    ----------
+    values : sequence
+        The stored values of :data:`COLUMN_NAMES`, in that order.
+
+    Returns
+    -------
+    str
+    """
+    parts = []
+    for (_name, kind), value in zip(COLUMNS, values):
+        if value is None:
+            parts.append("N")
+        elif kind == "REAL" and isinstance(value, (int, float)) and not isinstance(value, bool):
+            parts.append("f" + float(value).hex())
+        elif isinstance(value, int):
+            parts.append(f"i{value}")
+        elif isinstance(value, bytes):
+            parts.append("b" + value.hex())
+        else:
+            parts.append("s" + json.dumps(str(value)))
+    return hashlib.sha256("|".join(parts).encode()).hexdigest()[:16]
 
 
 def _encode_array(value):
@@ -87,6 +125,10 @@ def _decode_array(text):
     return np.asarray(json.loads(text), dtype=float)
 
 
+def _decode_text(raw):
+    return raw.decode("utf-8", "surrogateescape")
+
+
 def _encode_real(value):
     if value is None:
         return None
@@ -100,7 +142,8 @@ class ResultsStore:
 
     Opening creates the file (and its tables) when it does not exist or is an
     empty database; otherwise it checks that the file is a bild-mdo results
-    store of the same schema version and the same sweep.
+    store of the same schema version and the same sweep.  A writer (the
+    default) holds the file's one-writer lock until :meth:`close`.
 
     Parameters
     ----------
@@ -109,23 +152,40 @@ class ResultsStore:
     spec : SweepSpec
         The sweep this store belongs to; its fingerprint is stored in the meta
         table and compared on every later open.
+    writer : bool
+        Take the writer lock (needed by :meth:`write` and :meth:`drop`); a
+        reader opens an existing store while a sweep writes to it.
 
     Raises
     ------
     StoreError
-        If the file is not an SQLite database or is damaged, belongs to another
-        program (other tables), has another schema version, or was made for a
-        different sweep.
+        If the path is a folder, its folder is missing or not writable, the
+        disk is full, the file is not an SQLite database or is damaged,
+        belongs to another program (other tables), has another schema
+        version, or was made for a different sweep.
+    StoreBusyError
+        If ``writer`` and another sweep is writing to the file.
     """
 
-    def __init__(self, path, spec):
+    def __init__(self, path, spec, writer=True):
         self.path = os.fspath(path)
         self.spec = spec
+        self.writer = bool(writer)
         self.fingerprint = spec.fingerprint()
         self._conn = None
+        self._lock = None
+        check_store_path(self.path)
         try:
+            if self.writer:
+                self._lock = acquire_writer_lock(self.path)
             self._conn = sqlite3.connect(self.path, timeout=30.0)
+            # Text that is no longer UTF-8 (damaged on disk) reads back instead of raising; its row then
+            # fails the checksum and is recomputed.
+            self._conn.text_factory = _decode_text
             self._open()
+        except sqlite3.OperationalError as exc:
+            self.close()
+            raise operational_error(self.path, exc) from exc
         except sqlite3.DatabaseError as exc:
             self.close()
             raise StoreError(
@@ -133,7 +193,7 @@ class ResultsStore:
                 f"it is damaged ({exc}). Move the file away or choose another path (--db); a new store is "
                 "created when the file does not exist."
             ) from exc
-        except StoreError:
+        except BaseException:
             self.close()
             raise
 
@@ -141,6 +201,8 @@ class ResultsStore:
         conn = self._conn
         tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type='table'")}
         if not tables:
+            if not self.writer:
+                raise StoreError(f"'{self.path}' holds no results yet")
             self._create()
             return
         if META_TABLE not in tables or RESULTS_TABLE not in tables:
@@ -153,7 +215,11 @@ class ResultsStore:
             raise sqlite3.DatabaseError(f"integrity check failed: {check}")
         meta = dict(conn.execute(f"SELECT key, value FROM {META_TABLE}").fetchall())
         version = meta.get("schema_version")
-        if version != str(SCHEMA_VERSION):
+        if version is None or "sweep_fingerprint" not in meta:
+            raise sqlite3.DatabaseError(f"the meta table lacks its entries ({sorted(meta)})")
+        if version == "1" and self.writer:
+            self._upgrade_from_1()
+        elif version != str(SCHEMA_VERSION):
             raise StoreError(
                 f"'{self.path}' has results-store schema version {version!r}, this bild-mdo writes version "
                 f"{SCHEMA_VERSION}. Start a new store (another --db path) or use the bild-mdo version that made it."
@@ -174,7 +240,7 @@ class ResultsStore:
 
     def _create(self):
         self._configure()
-        cols = ",\n  ".join(f"{name} {kind}" for name, kind in COLUMNS)
+        cols = ",\n  ".join(f"{name} {kind}" for name, kind in COLUMNS + ((CHECKSUM_COLUMN, "TEXT"),))
         meta = {
             "schema_version": str(SCHEMA_VERSION),
             "sweep_fingerprint": self.fingerprint,
@@ -187,9 +253,29 @@ class ResultsStore:
             self._conn.execute(f"CREATE TABLE {RESULTS_TABLE} (\n  {cols}\n)")
             self._conn.executemany(f"INSERT INTO {META_TABLE} VALUES (?, ?)", sorted(meta.items()))
 
+    def _upgrade_from_1(self):
+        # Version 1 had no checksum: the rows are taken as they are and get one now.
+        records = self._conn.execute(f"SELECT {', '.join(COLUMN_NAMES)} FROM {RESULTS_TABLE}").fetchall()
+        with self._conn:
+            self._conn.execute(f"ALTER TABLE {RESULTS_TABLE} ADD COLUMN {CHECKSUM_COLUMN} TEXT")
+            self._conn.executemany(f"UPDATE {RESULTS_TABLE} SET {CHECKSUM_COLUMN} = ? WHERE case_id = ?",
+                                   [(row_checksum(r), r[0]) for r in records])
+            self._conn.execute(f"UPDATE {META_TABLE} SET value = ? WHERE key = 'schema_version'",
+                               (str(SCHEMA_VERSION),))
+
+    def _read(self, sql):
+        """All records of a query; SQLite errors from damage on disk become a StoreError."""
+        try:
+            return self._conn.execute(sql).fetchall()
+        except sqlite3.OperationalError as exc:
+            raise operational_error(self.path, exc) from exc
+        except sqlite3.DatabaseError as exc:
+            raise StoreError(f"the results store '{self.path}' is damaged ({exc}); move it away and rerun, "
+                             "or choose another --db path") from exc
+
     def meta(self):
         """Return the meta table as a dict of strings (schema_version, sweep_fingerprint, sweep_spec, created_at, ...)."""
-        return dict(self._conn.execute(f"SELECT key, value FROM {META_TABLE}").fetchall())
+        return dict(self._read(f"SELECT key, value FROM {META_TABLE}"))
 
     def write(self, row):
         """Insert one finished case and commit it.
@@ -205,7 +291,10 @@ class ResultsStore:
         ------
         ValueError
             On unknown columns or when the case is already stored.
+        StoreFullError
+            If the disk is full; the rows committed before stay.
         """
+        self._require_writer()
         unknown = set(row) - set(COLUMN_NAMES)
         if unknown:
             raise ValueError(f"unknown result columns {sorted(unknown)}")
@@ -220,25 +309,73 @@ class ResultsStore:
                 value = _encode_real(value)
             elif value is not None and kind.startswith("INTEGER"):
                 value = int(value)
+            elif value is not None and kind == "TEXT":
+                value = str(value)
             values.append(value)
         if row.get("finished_at") is None:
             values[COLUMN_NAMES.index("finished_at")] = time.time()
-        placeholders = ", ".join("?" for _ in COLUMNS)
+        values.append(row_checksum(values))
+        names = COLUMN_NAMES + (CHECKSUM_COLUMN,)
         try:
             with self._conn:
                 self._conn.execute(
-                    f"INSERT INTO {RESULTS_TABLE} ({', '.join(COLUMN_NAMES)}) VALUES ({placeholders})", values
-                )
+                    f"INSERT INTO {RESULTS_TABLE} ({', '.join(names)}) VALUES ({', '.join('?' for _ in names)})",
+                    values)
         except sqlite3.IntegrityError as exc:
             raise ValueError(f"case {row.get('case_id')} is already stored in '{self.path}' ({exc})") from exc
+        except sqlite3.OperationalError as exc:
+            if is_disk_full(exc):
+                raise full_error(self.path, self._safe_count()) from exc
+            raise operational_error(self.path, exc) from exc
+
+    def _require_writer(self):
+        if not self.writer:
+            raise ValueError(f"the results store '{self.path}' was opened for reading (writer=False)")
+
+    def _safe_count(self):
+        try:
+            return self.count()
+        except (sqlite3.Error, StoreError):
+            return None
+
+    def damaged_ids(self):
+        """Return the ids of stored cases whose values no longer match their checksum (damaged on disk).
+
+        Returns
+        -------
+        list of int
+            Sorted; empty when every row is intact.
+        """
+        names = COLUMN_NAMES + (CHECKSUM_COLUMN,)
+        damaged = []
+        for record in self._read(f"SELECT {', '.join(names)} FROM {RESULTS_TABLE}"):
+            if record[-1] != row_checksum(record[:-1]):
+                damaged.append(record[0])
+        # A damaged id may not even be an integer any more.
+        return sorted(damaged, key=lambda cid: (not isinstance(cid, int), cid if isinstance(cid, int) else 0, str(cid)))
+
+    def drop(self, case_ids):
+        """Delete the given cases (so that a resumed sweep computes them again).
+
+        Parameters
+        ----------
+        case_ids : iterable of int
+        """
+        self._require_writer()
+        try:
+            with self._conn:
+                self._conn.executemany(f"DELETE FROM {RESULTS_TABLE} WHERE case_id IS ?",
+                                       [(cid,) for cid in case_ids])
+        except sqlite3.OperationalError as exc:
+            raise operational_error(self.path, exc) from exc
 
     def done_ids(self):
         """Return the set of case ids already stored."""
-        return {r[0] for r in self._conn.execute(f"SELECT case_id FROM {RESULTS_TABLE}")}
+        return {r[0] for r in self._read(f"SELECT case_id FROM {RESULTS_TABLE}")}
 
     def count(self):
         """Return the number of stored cases."""
-        return self._conn.execute(f"SELECT COUNT(*) FROM {RESULTS_TABLE}").fetchone()[0]
+        return self._read(f"SELECT COUNT(*) FROM {RESULTS_TABLE}")[0][0]
 
     def rows(self):
         """Return every stored case in id order.
@@ -248,23 +385,34 @@ class ResultsStore:
         list of dict
             Column name -> value; NULL reads as None, converged flags as bool,
             chord/twist as float ndarrays.
+
+        Raises
+        ------
+        StoreError
+            If a row cannot be decoded (damage that :meth:`damaged_ids` reports).
         """
-        cursor = self._conn.execute(f"SELECT {', '.join(COLUMN_NAMES)} FROM {RESULTS_TABLE} ORDER BY case_id")
         out = []
-        for record in cursor:
+        for record in self._read(f"SELECT {', '.join(COLUMN_NAMES)} FROM {RESULTS_TABLE} ORDER BY case_id"):
             row = dict(zip(COLUMN_NAMES, record))
-            for name in _ARRAY_COLUMNS:
-                row[name] = _decode_array(row[name])
+            try:
+                for name in _ARRAY_COLUMNS:
+                    row[name] = _decode_array(row[name])
+            except (ValueError, TypeError) as exc:
+                raise StoreError(f"case {row['case_id']} in '{self.path}' is damaged ({exc}); rerun the sweep "
+                                 "on this file to recompute it") from exc
             for name in _BOOL_COLUMNS:
                 row[name] = bool(row[name])
             out.append(row)
         return out
 
     def close(self):
-        """Close the connection (idempotent)."""
+        """Close the connection, then release the writer lock (idempotent)."""
         if self._conn is not None:
             self._conn.close()
             self._conn = None
+        if self._lock is not None:
+            os.close(self._lock)
+            self._lock = None
 
     def __enter__(self):
         return self

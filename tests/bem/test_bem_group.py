@@ -1,8 +1,11 @@
 """BEMAnalysisGroup: total derivatives through the implicit inflow solve, and options."""
+import numpy as np
 import openmdao.api as om
 import pytest
 from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
 
+from bild_mdo.airfoil import get_polar
+from bild_mdo.bem.flow_states import PROPELLER, TURBULENT_WAKE, BEMStateWarning
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.utils.testing import check_group_totals
 
@@ -68,3 +71,30 @@ def test_group_is_feed_forward_runonce(analytic_polar, make_blade):
     assert isinstance(prob.model.linear_solver, om.LinearRunOnce)
     # Hover node: thrust and figure of merit positive and FM < 1 (momentum theory bound).
     assert prob.get_val("thrust")[0] > 0 and 0 < prob.get_val("figure_of_merit")[0] < 1
+
+
+def test_on_invalid_option_and_flow_state_output():
+    # The issue's blade: outboard annuli with negative pitch push air against the freestream at
+    # V_x = 5 m/s and against the rotor's own wake in hover (turbulent wake / vortex ring, invalid).
+
+    def run(v_axial, on_invalid):
+        prob = om.Problem(BEMAnalysisGroup(num_nodes=1, num_radial=20, num_blades=3, polar=get_polar("naca4412"),
+                                           on_invalid=on_invalid), reports=False)
+        prob.setup()
+        prob.set_val("radius", 1.0)
+        prob.set_val("hub_radius", 0.2)
+        prob.set_val("rpm", 3000.0)
+        prob.set_val("v_axial", v_axial)
+        prob.set_val("chord", np.full((1, 20), 0.1))
+        prob.set_val("twist", np.radians(np.linspace(20, -10, 20))[None, :])
+        prob.run_model()
+        return prob
+
+    with pytest.raises(om.AnalysisError, match="turbulent wake / vortex ring"):
+        run(5.0, "raise")
+    with pytest.warns(BEMStateWarning, match="node 0, station"):
+        prob = run(5.0, "warn")
+    assert np.any(prob.get_val("flow_state") == TURBULENT_WAKE)
+    with pytest.raises(om.AnalysisError, match="station 19 .*turbulent wake / vortex ring"):
+        run(0.0, "raise")
+    assert np.all(run(0.0, "ignore").get_val("flow_state")[0, :10] == PROPELLER)

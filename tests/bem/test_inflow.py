@@ -50,30 +50,15 @@ def test_solve_linear_divides_by_state_jacobian(smooth_polar, make_blade):
     dR_dphi = comp._dR_dphi.copy()
     rhs = np.arange(1.0, NN * NR + 1).reshape(NN, NR)
     for mode in ("fwd", "rev"):
-        d_outputs = {"phi": np.zeros((NN, NR))}
-        d_residuals = {"phi": np.zeros((NN, NR))}
+        d_outputs = {"phi": np.zeros((NN, NR)), "flow_state": np.zeros((NN, NR))}
+        d_residuals = {"phi": np.zeros((NN, NR)), "flow_state": np.zeros((NN, NR))}
         (d_residuals if mode == "fwd" else d_outputs)["phi"] = rhs
+        (d_residuals if mode == "fwd" else d_outputs)["flow_state"] = 2.0 * rhs
         comp.solve_linear(d_outputs, d_residuals, mode)
         result = d_outputs["phi"] if mode == "fwd" else d_residuals["phi"]
         np.testing.assert_allclose(result, rhs / dR_dphi, rtol=1e-15)
-
-
-def test_no_bracket_raises_analysis_error(make_blade):
-    class DownforcePolar(Polar):
-        """cl = -10 cos(alpha), cd = 0 (unphysical).
-
-        With zero twist alpha = -phi, so in hover R = -10 sigma cos^2(phi) - 4 F sin^2(phi) < 0
-        for every phi: no inflow angle balances momentum and blade element (hand derivation).
-        """
-
-        def _evaluate_real(self, alpha, reynolds):
-            z = np.zeros_like(alpha)
-            return PolarValues(-10.0 * np.cos(alpha), z, 10.0 * np.sin(alpha), z, z, z)
-
-    blade = make_blade(NN, NR)
-    blade["twist"] = np.zeros((NN, NR))
-    with pytest.raises(om.AnalysisError, match=r"design/node 0, station 0 \(r = "):
-        _problem(DownforcePolar(), blade, all_hover=True)
+        # The flow-state label's residual is flow_state - label: an identity block.
+        np.testing.assert_array_equal((d_outputs if mode == "fwd" else d_residuals)["flow_state"], 2.0 * rhs)
 
 
 @pytest.mark.parametrize("loss_model", ["tip_hub", "tip", "none"])

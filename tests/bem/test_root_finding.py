@@ -3,7 +3,7 @@ import numpy as np
 import openmdao.api as om
 import pytest
 
-from bild_mdo.bem.root_finding import find_brackets, solve_bracketed
+from bild_mdo.bem.root_finding import find_brackets, solve_bracketed, solve_physical
 from bild_mdo.utils.newton import complex_step_update
 
 
@@ -94,3 +94,31 @@ def test_non_convergence_raises_analysis_error_naming_station():
         return np.where(cubic, d**3, d), np.where(cubic, 3 * d**2, 1.0)
     with pytest.raises(om.AnalysisError, match=r"did not converge in 2 iterations at design/node 0, station 1"):
         solve_bracketed(residual, 2, shape=(1, 2), max_iter=2)
+
+
+def test_physical_solve_order_and_admissibility():
+    # R = sin(phi - root): roots at root and root - pi.  Station 0: Q1 root 0.3.  Station 1: root -0.5
+    # (Q2) and -0.5 + pi = 2.64 (Q3): Q2 comes first.  Station 2: the same, but W < 0 where phi < 0
+    # (admissible rejects it), so forward flight takes Q3.  Station 3: as 2 in hover (no Q3): none.
+    roots = np.array([0.3, -0.5, -0.5, -0.5])
+    residual, _ = _shifted_sine(roots)
+    reject_negative = np.array([False, False, True, True])
+
+    def admissible(phi, idx):
+        return ~(reject_negative[idx] & (phi < 0))
+
+    phi, found = solve_physical(residual, admissible, forward=np.array([True, True, True, False]))
+    np.testing.assert_array_equal(found, [True, True, True, False])
+    np.testing.assert_allclose(phi[:3], [0.3, -0.5, np.pi - 0.5], atol=1e-14)
+    assert np.isnan(phi[3])
+
+
+def test_physical_solve_takes_low_induction_branch_of_two_q1_roots():
+    # R = (phi - 0.1)(phi - 0.9) > 0 at both ends of Q1: an even number of roots there.  In forward
+    # flight the largest (0.9, smaller induction) is taken; in hover the first admissible sign change.
+    def residual(phi, idx):
+        return (phi - 0.1) * (phi - 0.9), 2 * phi - 1.0
+
+    phi, found = solve_physical(residual, lambda p, i: np.ones(p.shape, dtype=bool), np.array([True, False]))
+    assert np.all(found)
+    np.testing.assert_allclose(phi, [0.9, 0.1], atol=1e-14)

@@ -161,8 +161,9 @@ def test_windmilling_inboard_station_is_reported_with_its_remedy(chord_form):
         prob.run_model()
         return prob
 
-    with pytest.raises(om.AnalysisError, match=r"(?s)'induced_velocity'.*u_axial > V_x.*node 0, station 0.*"
-                                               r"needs V_x < eta2 V_theta C_l\*/C_d\*.*hub_radius_ratio"):
+    with pytest.raises(om.AnalysisError, match=r"(?s)BILD: 1 of 1 node.*u_axial > V_x.*"
+                                               r"needs V_x < eta2 V_theta C_l\*/C_d\*.*hub_radius_ratio.*"
+                                               r"node 0, station 0 \("):
         run(0.2)
     # The suggested remedy works: from r/R = 0.35 on, V_theta >= 47 m/s and every station produces thrust.
     prob = run(0.35)
@@ -176,7 +177,7 @@ def test_hover_rotor_without_a_loaded_station_raises():
     prob.setup()
     prob.set_val("ref_chord", [0.002])
     prob.set_val("ref_radius_ratio", [0.25])
-    with pytest.raises(om.AnalysisError, match=r"'performance'.*torque = 0\.0 at node 0: the shaft power"):
+    with pytest.raises(om.AnalysisError, match=r"(?s)BILD: 1 of 1 node.*no station can be loaded.*zero torque"):
         prob.run_model()
 
 
@@ -256,3 +257,46 @@ def test_fig8_performance_against_reference_chord(sweeps):
     fm = sweeps[0.0].get_val("figure_of_merit")
     assert np.all(np.diff(fm[1:]) < 0.0)
     assert np.all((fm > 0.8) & (fm < 0.9))
+
+
+def _infeasible_batch(on_infeasible):
+    # AnalyticPolar(cd0=0.2, k=0.2): C_l*/C_d* = 3.69.  Node 0 windmills at its innermost station (see
+    # test_windmilling_inboard_station_is_reported_with_its_remedy); node 1 is the same point with the remedy
+    # hub_radius_ratio = 0.35.  Node 2 hovers with c_ref = 0.1 mm at r_ref/R = 0.201, inboard of every station:
+    # lambda <= V_theta C_d*/(2 C_l*) everywhere, so no station is loaded and Q = 0.  Node 3 (J = 3, c_ref = 0.5 m
+    # at r_ref/R = 0.3) has u_axial_ref < V_x at the reference station (Assumption 3).  Node 4: J = 1, feasible.
+    prob = om.Problem(BILDGroup(num_nodes=5, num_radial=NR_REF, polar=AnalyticPolar(cd0=0.2, k=0.2),
+                                input_mode="advance_ratio", on_infeasible=on_infeasible), reports=False)
+    prob.setup()
+    for name, value in dict(advance_ratio=[3.0, 3.0, 0.0, 3.0, 1.0], ref_chord=[0.1, 0.1, 1e-4, 0.5, 0.1],
+                            hub_radius_ratio=[0.2, 0.35, 0.2, 0.2, 0.2],
+                            ref_radius_ratio=[0.5, 0.5, 0.201, 0.3, 0.5]).items():
+        prob.set_val(name, value)
+    return prob
+
+
+def test_one_error_names_every_infeasible_node_with_its_reason():
+    prob = _infeasible_batch("raise")
+    with pytest.raises(om.AnalysisError) as info:
+        prob.run_model()
+    message = str(info.value)
+    assert "3 of 5 node(s) infeasible" in message
+    assert "u_axial_ref > V_x fails" in message and "node(s) 3 [" in message
+    assert "no station can be loaded" in message and "node(s) 2 [" in message
+    assert "u_axial > V_x, positive local thrust" in message and "node(s) 0 [node 0, station 0 (" in message
+
+
+def test_flagged_nodes_leave_the_feasible_ones_unchanged():
+    prob = _infeasible_batch("flag")
+    prob.run_model()
+    np.testing.assert_array_equal(prob.get_val("feasible"), [0.0, 1.0, 0.0, 0.0, 1.0])
+    assert list(prob.model.feasibility.status() == "ok") == [False, True, False, False, True]
+    alone = om.Problem(BILDGroup(num_nodes=2, num_radial=NR_REF, polar=AnalyticPolar(cd0=0.2, k=0.2),
+                                 input_mode="advance_ratio"), reports=False)
+    alone.setup()
+    for name, value in dict(advance_ratio=[3.0, 1.0], ref_chord=[0.1, 0.1], hub_radius_ratio=[0.35, 0.2],
+                            ref_radius_ratio=[0.5, 0.5]).items():
+        alone.set_val(name, value)
+    alone.run_model()
+    for name in ("thrust", "power", "chord", "twist", "eta2", "dtorque_dr"):
+        assert np.array_equal(prob.get_val(name)[[1, 4]], alone.get_val(name)), name

@@ -58,5 +58,5 @@ def test_nonpositive_force_coefficient_names_node_and_station(form, phi, rule):
     values = _consistent("cruise")
     values["phi"] = values["phi"].copy()
     values["phi"][2, 5] = phi
-    with pytest.raises(om.AnalysisError, match=rf"(?s)first at node 2, station 5 .*needs {rule}"):
+    with pytest.raises(om.AnalysisError, match=rf"(?s)needs {rule}.*at 1 node\(s\): node 2, station 5 "):
         check_component_partials(ChordComp(num_nodes=NN, num_radial=NR, chord_form=form), values)

@@ -57,7 +57,8 @@ def test_assumption_3_violations_raise(name, value, rule):
     values = reference_values("cruise")
     values[name] = values[name].copy()
     values[name][1] = value  # node 1 has V_x = 30 m/s
-    with pytest.raises(om.AnalysisError, match=rf"Assumption 3 violated at node 1 \({rule} fails"):
+    with pytest.raises(om.AnalysisError,
+                       match=rf"Assumption 3 violated at the reference station: {rule} fails.* node 1 \("):
         run(values, NN)
 
 

@@ -77,9 +77,9 @@ def test_positive_local_thrust_boundary_is_exact():
     assert prob.get_val("u_axial")[1, 2] > values["v_axial"][1]
     # ... just outside it the station would windmill, and the component says where and what to change.
     values = _cruise_at_ratio(1.0 + 1e-9)
-    with pytest.raises(om.AnalysisError, match=r"(?s)u_axial > V_x.*node 1, station 2.*"
+    with pytest.raises(om.AnalysisError, match=r"(?s)u_axial > V_x.*"
                                                r"needs V_x < eta2 V_theta C_l\*/C_d\*.*hub_radius_ratio.*"
-                                               r"advance ratio.*higher maximum L/D"):
+                                               r"advance ratio.*higher maximum L/D.*node 1, station 2 "):
         check_component_partials(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)
 
 
@@ -89,5 +89,5 @@ def test_low_lift_to_drag_inboard_station_raises():
     values = state("cruise")
     values["cd_star"] = values["cd_star"].copy()
     values["cd_star"][0] = 2.0 * values["cl_star"][0]
-    with pytest.raises(om.AnalysisError, match=r"first at node 0, station 0 \(V_theta = "):
+    with pytest.raises(om.AnalysisError, match=r"at 1 node\(s\): node 0, station 0 \(V_theta "):
         check_component_partials(InducedVelocityComp(num_nodes=NN, num_radial=NR), values)

@@ -25,6 +25,6 @@ def test_tangential_induction_beyond_twice_blade_speed_names_node_and_station():
     values = state("cruise")
     values["u_theta"] = values["u_theta"].copy()
     values["u_theta"][1, 3] = 2.5 * values["v_theta"][1, 3]
-    with pytest.raises(om.AnalysisError, match=r"u_theta >= 2 V_theta \(eta2 <= 0\) at 1 station\(s\), "
-                                               r"first at node 1, station 3 \(u_theta = "):
+    with pytest.raises(om.AnalysisError, match=r"u_theta >= 2 V_theta \(eta2 <= 0\).* at 1 node\(s\): "
+                                               r"node 1, station 3 \(u_theta "):
         check_component_partials(InflowAngleComp(num_nodes=NN, num_radial=NR), values)

@@ -39,3 +39,32 @@ def test_design_batch(tmp_path, capsys):
     assert code == 0
     assert "2 designs" in out
     assert (tmp_path / "b_0.csv").is_file() and (tmp_path / "b_1.csv").is_file()
+
+
+def test_zero_chord_design_writes_no_file(tmp_path, capsys):
+    # With c_ref = 0.1 mm on R = 1.5 m the BILD ideal load vanishes outboard (chord 0 at the outer stations):
+    # the blade ends before R, so no geometry file is written; without files the design prints with a warning.
+    code, out, err = run(capsys, "design", "--ref-chord", "0.0001", "--num-radial", "8", "--csv",
+                         str(tmp_path / "z.csv"))
+    assert code == 2 and out == ""
+    assert err.strip().splitlines()[-1].startswith("bild-mdo design: error: the design has zero chord at 3 of 8 "
+                                                   "stations")
+    assert list(tmp_path.iterdir()) == []
+    code, out, err = run(capsys, "design", "--ref-chord", "0.0001", "--num-radial", "8")
+    assert code == 0 and "stations:" in out
+    assert "bild-mdo: warning: the design has zero chord at 3 of 8 stations" in err
+
+
+@pytest.mark.parametrize("option, target, message", [
+    ("--json", "missing/b.json", "does not exist"),
+    ("--qprop", "folder", "is a folder"),
+    ("--plot", "folder", "is a folder"),
+    ("--csv", "folder/", "is a folder"),
+])
+def test_output_files_are_checked_before_the_design(tmp_path, capsys, option, target, message):
+    (tmp_path / "folder").mkdir()
+    code, out, err = run(capsys, "design", "--airfoil", "analytic", "--num-radial", "5", "--csv",
+                         str(tmp_path / "ok.csv"), option, str(tmp_path / target))
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1 and message in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["folder"]

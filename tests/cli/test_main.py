@@ -1,5 +1,6 @@
 """The bild-mdo command: help texts with units, one-line errors with exit code 2, the subcommand wiring."""
 import functools
+import warnings
 import subprocess
 import sys
 
@@ -35,7 +36,13 @@ def test_version(capsys):
     (["design", "--radius", "nan"], "radius must be a positive finite number in m, got nan"),
     (["design", "--rpm", "abc"], "invalid float value"),
     (["design", "--v-axial", "1", "--advance-ratio", "1"], "not allowed with"),
-    (["design", "--airfoil", "foo"], "invalid choice"),
+    (["design", "--airfoil", "foo"], "--airfoil: unknown airfoil 'foo'"),
+    (["analyze", "missing.csv", "--rpm", "500", "900", "3", "--airfoil", "foo"], "--airfoil: unknown airfoil 'foo'"),
+    (["analyze", "missing.csv", "--advance-ratio", "0", "1", "1e9"], "would need about 6 TB of memory"),
+    (["analyze", "missing.csv", "--advance-ratio", "-1", "1", "3"], "--advance-ratio START must be a finite number >= 0, got -1"),
+    (["analyze", "missing.csv", "--rpm", "nan", "900", "3"], "--rpm START must be a positive finite number in rpm, got nan"),
+    (["design", "--num-radial", "100000000"], "would need about 300 GB of memory"),
+    (["design", "--num-radial", "1"], "--num-radial must be an integer >= 2, got 1"),
     (["design", "--hub-radius-ratio", "0.6"], "hub_radius_ratio must be smaller"),
     (["design", "--rpm", "800", "900", "--ref-chord", "0.1", "0.2", "0.3"], "batch sizes disagree"),
     (["analyze", "missing.csv", "--rpm", "500", "900", "3"], "not found"),
@@ -53,6 +60,34 @@ def test_bad_arguments_give_one_line_and_exit_2(tmp_path, monkeypatch, capsys, a
     assert len(err.strip().splitlines()) == 1, err
     assert message in err and "error" in err
     assert "Traceback" not in err + out
+
+
+def test_warnings_show_once_as_one_line_without_source(monkeypatch, capsys):
+    def handler(args, out):
+        for _ in range(3):  # the same message from one place and from another: shown once
+            warnings.warn("Reynolds number clamped\n  to the table", UserWarning)
+        warnings.warn("Reynolds number clamped to the table", UserWarning)
+        warnings.warn("another message", RuntimeWarning)
+        return 0
+
+    module, add_arguments, _ = cli_main.COMMANDS["demo"]
+    monkeypatch.setitem(cli_main.COMMANDS, "demo", (module, add_arguments, handler))
+    code, _, err = run(capsys, "demo")
+    assert code == 0
+    assert err.splitlines() == ["bild-mdo: warning: Reynolds number clamped to the table",
+                                "bild-mdo: warning: another message"]
+
+
+def test_an_unexpected_error_is_one_line_with_exit_1(monkeypatch, capsys):
+    def handler(args, out):
+        raise KeyError("station")
+
+    module, add_arguments, _ = cli_main.COMMANDS["demo"]
+    monkeypatch.setitem(cli_main.COMMANDS, "demo", (module, add_arguments, handler))
+    code, _, err = run(capsys, "demo")
+    assert code == 1
+    assert err.strip().splitlines() == ["bild-mdo demo: internal error: KeyError: 'station' (rerun with --debug "
+                                        "for the traceback and report it)"]
 
 
 def test_debug_shows_the_traceback(capsys):

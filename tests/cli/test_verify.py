@@ -2,6 +2,7 @@
 import argparse
 import io
 import re
+import sys
 import time
 
 import pytest
@@ -82,3 +83,48 @@ def test_verify_levels3_end_to_end(tmp_path):
         assert table.quantities[key].mean_relative_error_pct <= limit, key
     # Same thrust by construction: the optimisation's equality constraint is T = T_BILD (|T/T* - 1| <= 1e-6).
     assert table.quantities["thrust_coefficient"].mean_relative_error_pct < 1e-4
+
+
+def _never_called(*args):
+    raise AssertionError("no case may be computed when the options are wrong")
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--workers", "0"], "workers must be an integer >= 1"),
+    (["--workers", "-3"], "workers must be an integer >= 1"),
+    (["--levels", "1000"], r"levels=1000 is too large: 1,000,000,000,000 cases: about 80 PB of memory and "
+                           r"1.58e\+04 CPU-years of BEM optimisation; levels <= 15"),
+])
+def test_bad_options_stop_before_any_work(tmp_path, argv, message):
+    db = tmp_path / "v.sqlite"
+    with pytest.raises(ValueError, match=message):
+        run_verify(_args(argv + ["--db", str(db), "--no-progress"]), io.StringIO(), _never_called, _never_called)
+    assert not db.exists()
+
+
+def test_missing_optimizer_package_stops_at_once_with_an_install_hint(tmp_path, monkeypatch):
+    # None in sys.modules makes `import pyoptsparse` fail, whether or not it is installed here.
+    monkeypatch.setitem(sys.modules, "pyoptsparse", None)
+    db = tmp_path / "v.sqlite"
+    with pytest.raises(ImportError, match=r"^--optimizer snopt needs pyOptSparse built with SNOPT .* not importable "
+                                          r"here: build pyOptSparse \(https://github.com/mdolab/pyoptsparse\)"):
+        run_verify(_args(["--optimizer", "snopt", "--db", str(db)]), io.StringIO(), _never_called, _never_called)
+    assert not db.exists()
+
+
+def test_unwritable_figures_folder_stops_at_once(tmp_path):
+    (tmp_path / "plain").write_text("x")
+    db = tmp_path / "v.sqlite"
+    for folder, message in ((tmp_path / "plain", "it is a file, not a folder"),
+                            (tmp_path / "plain" / "figs", "cannot write figures there")):
+        with pytest.raises(ValueError, match=message):
+            run_verify(_args(["--figures", str(folder), "--db", str(db)]), io.StringIO(), _never_called,
+                       _never_called)
+    assert not db.exists()
+
+
+def test_bad_db_paths_stop_at_once(tmp_path):
+    for db, message in ((tmp_path / "missing" / "v.sqlite", "does not exist; create it"),
+                        (tmp_path, "is a folder")):
+        with pytest.raises(StoreError, match=message):
+            run_verify(_args(["--db", str(db)]), io.StringIO(), _never_called, _never_called)

@@ -34,3 +34,29 @@ def test_unreadable_csv_files(tmp_path):
     (tmp_path / "blades.csv").write_text("r [m],chord [m],twist [deg]\n0.3,0.1,1\n0.4,0.1,1\n")
     with pytest.raises(ValueError, match="number of blades is missing"):
         read_csv(tmp_path / "blades.csv")
+
+
+@pytest.mark.parametrize("text, message", [
+    ("# num_blades: two\nr [m],chord [m],twist [deg]\n0.3,0.1,1\n0.4,0.1,1\n", "num_blades must be a number"),
+    ("# num_blades: 3\n# radius [m]: x\nr [m],chord [m],twist [deg]\n0.3,0.1,1\n0.4,0.1,1\n",
+     "radius must be a number, got 'x'"),
+    ("# num_blades: 3\n# design_point.rpm [rpm]: fast\nr [m],chord [m],twist [deg]\n0.3,0.1,1\n",
+     "bad.csv:2: design_point.rpm must be a number"),
+    ("# num_blades: 3\nr [m],chord [m],twist [deg]\n0.3,0.1,1\n0.4,nan,1\n", "must be finite numbers"),
+    ("# num_blades: 3\nr [m],chord [m],twist [deg]\n0.3,0.1,1\n0.4,0.1\x00,1\n", "bad.csv:4:"),
+    ("# num_blades: 3\n# loss_model: prandtl\nr [m],chord [m],twist [deg]\n0.3,0.1,1\n0.4,0.1,1\n",
+     "loss_model must be one of tip_hub, tip, none"),
+])
+def test_damaged_csv_gives_one_line_naming_the_file(tmp_path, text, message):
+    path = tmp_path / "bad.csv"
+    path.write_text(text)
+    with pytest.raises(ValueError) as info:
+        read_csv(path)
+    assert str(info.value).startswith(str(path)) and message in str(info.value)
+
+
+def test_binary_file_is_not_text(tmp_path):
+    path = tmp_path / "blade.csv"
+    path.write_bytes(b"\xff\xfe\x00r [m]")
+    with pytest.raises(ValueError, match="blade.csv: not a UTF-8 text file"):
+        read_csv(path)

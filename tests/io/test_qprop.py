@@ -83,3 +83,29 @@ def test_too_short_file(tmp_path):
     (tmp_path / "short.prop").write_text("name\n 2 ! Nblades\n")
     with pytest.raises(ValueError, match="too short"):
         read_qprop(tmp_path / "short.prop")
+
+
+@pytest.mark.parametrize("line, replacement, message", [
+    (" 0.50  5.8      ! CL0     CL_a", " 0.50  0      ! CL0     CL_a", ":5: CL_a must be a positive finite number"),
+    (" -0.3  1.2      ! CLmin   CLmax", " 1.3  1.2", ":6: CLmin must be smaller than CLmax"),
+    (" 70000   -0.7               !  REref  REexp", " 0 -0.7", ":9: REref must be a positive finite number"),
+    (" 0.028  0.050  0.020  0.5   !  CD0    CD2u   CD2l   CLCD0", " nan 0.05 0.02 0.5", ":8: expected finite"),
+    (" 2              ! Nblades  [ R ]", " 2.5", ":3: Nblades must be an integer >= 1, got 2.5"),
+    (" 2              ! Nblades  [ R ]", " inf", ":3: expected finite numbers"),
+    (" 3.0   0.9    20.0", " 3.0   0.9", ":16: expected a station row 'r c beta'"),
+    (" 3.0   0.9    20.0", " 0.5   0.9    20.0", ": station radii must be strictly increasing"),
+])
+def test_damaged_qprop_files_give_one_line(tmp_path, line, replacement, message):
+    assert line in FOREIGN_QPROP
+    path = tmp_path / "damaged.prop"
+    path.write_text(FOREIGN_QPROP.replace(line, replacement))
+    with pytest.raises(ValueError) as info:
+        read_qprop(path)
+    assert str(info.value).startswith(f"{path}") and message in str(info.value)
+
+
+def test_polar_from_qprop_checks_the_lift_slope():
+    coefficients = dict(CL0=0.5, CL_a=0.0, CLmin=-0.3, CLmax=1.2, CD0=0.028, CD2u=0.05, CD2l=0.02, CLCD0=0.5,
+                        REref=7e4, REexp=-0.7)
+    with pytest.raises(ValueError, match="CL_a must be a positive finite number"):
+        polar_from_qprop(coefficients)

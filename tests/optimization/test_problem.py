@@ -12,8 +12,8 @@ def test_input_errors():
         build_optimization_problem(optimizer="cobyla")
     with pytest.raises(ValueError, match="needs bild_chord and bild_twist"):
         build_optimization_problem(0.0, 800.0, 1.0, 0.2, 400.0)
-    with pytest.raises(ValueError, match="unknown airfoil 'naca0000'"):
-        build_optimization_problem(polar="naca0000")
+    with pytest.raises(ValueError, match="unknown airfoil 'no_such_airfoil'"):
+        build_optimization_problem(polar="no_such_airfoil")
     prob = build_optimization_problem()
     with pytest.raises(ValueError, match="hub_radius < radius"):
         set_optimization_case(prob, 0.0, 800.0, 1.0, 1.2, 400.0, initial="linear")

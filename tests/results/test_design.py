@@ -2,6 +2,7 @@
 import json
 
 import numpy as np
+import openmdao.api as om
 import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
@@ -142,7 +143,7 @@ def test_exports(tmp_path):
     (dict(v_axial=-1.0), "v_axial"),
     (dict(advance_ratio=-0.1), "advance_ratio"),
     (dict(v_axial=1.0, advance_ratio=0.1), "not both"),
-    (dict(airfoil="naca0012"), "unknown airfoil 'naca0012'; available: analytic, naca4412"),
+    (dict(airfoil="no_such_airfoil"), "unknown airfoil 'no_such_airfoil'; available: analytic, naca4412"),
     (dict(altitude=20000.0), "altitude"),
     (dict(num_blades=0), "num_blades"),
     (dict(num_radial=2.5), "num_radial must be an integer >= 1, got 2.5"),
@@ -158,3 +159,74 @@ def test_exports(tmp_path):
 def test_validation_errors(kwargs, message):
     with pytest.raises(ValueError, match=message):
         design_rotor(**{**dict(airfoil="analytic", num_radial=5), **kwargs})
+
+
+# A design whose reference station is overloaded: BILD's reference BEM solve at r_ref = 0.3006 R gives
+# u_theta_ref = 42.7 m/s > V_theta_ref = Omega r_ref = 33.1 m/s, against the paper's Assumption 3
+# (0 < u_theta < V_theta), so Eq. (22) has no ideal-loading constant (V = 26.8 m/s, 824 rpm, R = 1.277 m,
+# c_ref = 0.2 m, hub ratio 0.2970, 3533 m).
+OVERLOADED = dict(v_axial=26.8, rpm=824.0, radius=1.277, ref_chord=0.200, ref_radius_ratio=0.3006,
+                  hub_radius_ratio=0.2970, altitude=3533.0)
+# Feasible designs around it: the paper's hover rotor (R = 1.5 m, 800 rpm) and two forward-flight points.
+FEASIBLE = dict(v_axial=0.0, rpm=800.0, radius=1.5, ref_chord=0.15, ref_radius_ratio=0.5, hub_radius_ratio=0.2,
+                altitude=0.0)
+NR_INFEASIBLE = 12
+
+
+def _batch(designs):
+    return {name: np.array([design[name] for design in designs]) for name in FEASIBLE}
+
+
+def _mixed():
+    cruise = dict(FEASIBLE, v_axial=20.0)
+    fast = dict(FEASIBLE, v_axial=40.0, ref_chord=0.1)
+    return [FEASIBLE, OVERLOADED, cruise, fast], [FEASIBLE, cruise, fast]
+
+
+def _assert_identical(a, b):
+    assert a.values.keys() == b.values.keys()
+    for name, value in a.values.items():
+        assert np.array_equal(value, b.values[name]), name
+
+
+def test_skip_returns_the_whole_batch_with_mask_status_and_nan(tmp_path):
+    mixed, feasible_only = _mixed()
+    result = design_rotor(**_batch(mixed), num_radial=NR_INFEASIBLE, on_infeasible="skip")
+    np.testing.assert_array_equal(result.feasible, [True, False, True, True])
+    assert list(result.status[[0, 2, 3]]) == ["ok"] * 3
+    assert result.status[1].startswith("Assumption 3 violated at the reference station: u_theta_ref < V_theta_ref")
+    # The infeasible design keeps its inputs; every computed quantity is NaN (documented in DesignResult).
+    bad = result[1]
+    assert not bad.feasible and bad.v_axial == 26.8 and bad.ref_chord == 0.2
+    assert np.isnan(bad.thrust) and np.all(np.isnan(bad.chord)) and np.isnan(bad.figure_of_merit)
+    assert "INFEASIBLE" in bad.summary() and "infeasible" in result.summary()
+    # The feasible designs are bitwise those of a batch without the infeasible one, and of each alone.
+    subset = result.feasible_designs()
+    assert len(subset) == 3 and np.all(subset.feasible)
+    _assert_identical(subset, design_rotor(**_batch(feasible_only), num_radial=NR_INFEASIBLE))
+    _assert_identical(result[3], design_rotor(**feasible_only[2], num_radial=NR_INFEASIBLE))
+    with pytest.raises(ValueError, match="1 of 4 designs are infeasible"):
+        result.to_csv(tmp_path / "rotor.csv")
+    assert not list(tmp_path.iterdir())  # nothing written
+
+
+def test_raise_counts_all_and_lists_the_first_ten():
+    mixed, _ = _mixed()
+    with pytest.raises(om.AnalysisError, match=r"(?s)1 of 4 design\(s\) infeasible:.*u_theta_ref < V_theta_ref.*"
+                                               r"design\(s\) 1 \[design 1 \(u_axial_ref"):
+        design_rotor(**_batch(mixed), num_radial=NR_INFEASIBLE)
+    many = [FEASIBLE] + [OVERLOADED] * 12
+    with pytest.raises(om.AnalysisError, match=r"(?s)12 of 13 design\(s\) infeasible \(the first 10 listed\).*"
+                                               r"design\(s\) 1-10 \["):
+        design_rotor(**_batch(many), num_radial=NR_INFEASIBLE)
+
+
+def test_single_infeasible_design():
+    with pytest.raises(om.AnalysisError, match="1 of 1 design"):
+        design_rotor(**OVERLOADED, num_radial=NR_INFEASIBLE)
+    single = design_rotor(**OVERLOADED, num_radial=NR_INFEASIBLE, on_infeasible="skip")
+    assert not single.is_batch and single.feasible is False and np.isnan(single.power)
+    with pytest.raises(ValueError, match="infeasible"):
+        single.feasible_designs()
+    with pytest.raises(ValueError, match="on_infeasible"):
+        design_rotor(on_infeasible="ignore")

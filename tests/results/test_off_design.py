@@ -112,7 +112,7 @@ def test_geometry_sources_agree(tmp_path):
     (dict(advance_ratios=[0.5], rpm=-1.0), "rpm must be a positive finite number in rpm, got -1"),
     (dict(advance_ratios=["0.5"]), r"advance_ratios must be a finite number >= 0, got \['0.5'\]"),
     (dict(rpms=[800.0], v_axial=True), "v_axial must be a finite number >= 0 in m/s, got True"),
-    (dict(advance_ratios=[0.5], polar="naca0012"), "unknown airfoil 'naca0012'"),
+    (dict(advance_ratios=[0.5], polar="no_such_airfoil"), "unknown airfoil 'no_such_airfoil'"),
 ])
 def test_invalid_sweeps(kwargs, message):
     with pytest.raises(ValueError, match=message):
@@ -136,3 +136,49 @@ def test_every_registry_metric_is_a_sweep_quantity(tmp_path):
         np.testing.assert_array_equal(getattr(sweep, metric.name), getattr(sweep.bem, metric.name))
         assert OffDesignResult.UNITS[metric.name] == metric.units
         assert f"{metric.name} [{metric.units or '-'}]" in header
+
+
+# A blade twisted from +20 deg at the hub to -10 deg at the tip: in forward flight at 3000 rpm its outboard
+# annuli push air forward against the freestream (dT < 0 with axial induction a > 0.4), the turbulent-wake /
+# vortex-ring state where momentum theory has no valid solution (Glauert; Buhl 2005, NREL/TP-500-36834).
+NEGATIVE_TIP = dict(radii=np.linspace(0.25, 0.98, 20), chord=np.full(20, 0.1),
+                    twist=np.radians(np.linspace(20.0, -10.0, 20)), radius=1.0, hub_radius=0.2, num_blades=3,
+                    airfoil="analytic", loss_model="tip_hub")
+
+
+def test_failed_points_are_recorded_and_the_sweep_goes_on():
+    # Negative tip pitch: the outboard annuli push air against the flow (vortex ring, flagged) at low J;
+    # at J = 1.5 the freestream carries every annulus in a valid state.
+    sweep = off_design_sweep(NEGATIVE_TIP, advance_ratios=[1.5, 0.1], rpm=3000.0, on_invalid="raise")
+    assert sweep.status[0] == "ok" and np.isfinite(sweep.thrust[0])
+    assert "turbulent wake / vortex ring" in sweep.status[1] and np.isnan(sweep.thrust[1])
+    np.testing.assert_array_equal(sweep.ok, [True, False])
+    assert "failed: BEM analysis" in sweep.summary()
+    with pytest.warns(UserWarning, match="turbulent wake"):
+        warned = off_design_sweep(NEGATIVE_TIP, advance_ratios=[1.5, 0.1], rpm=3000.0)
+    assert list(warned.status) == ["ok", "ok"] and np.all(np.isfinite(warned.thrust))
+
+
+def test_points_that_raise_are_isolated_by_bisection():
+    # Logic of the fallback: only the points whose analysis raises are marked, each with its own message.
+    failing = {2, 5}
+
+    class Result:
+        def __init__(self, points):
+            self.flow_state = np.ones((points.size, 3), dtype=int)
+            for metric in METRICS:
+                setattr(self, metric.name, points.astype(float))
+
+    def run(points, mode):
+        if failing & set(points.tolist()):
+            raise off_design_module.om.AnalysisError(f"'performance' <class X>: Error calling compute(), "
+                                                     f"torque = 0.0 at node 0 of {points.tolist()}")
+        return Result(points)
+
+    r_over_r = np.ones((7, 3))
+    bem, performance, flow_state, status = off_design_module._analyze_points(run, 7, "raise", r_over_r)
+    assert bem is None
+    assert [s == "ok" for s in status] == [True, True, False, True, True, False, True]
+    assert status[2] == "torque = 0.0 at node 0 of [2]"
+    np.testing.assert_array_equal(performance["thrust"], [0, 1, np.nan, 3, 4, np.nan, 6])
+    assert np.all(flow_state[[2, 5]] == -1)

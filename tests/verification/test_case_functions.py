@@ -1,9 +1,10 @@
 """The sweep's science functions: batched BILD and the per-case optimisation, run through run_sweep."""
+import numpy as np
 import pytest
 
 from bild_mdo.atmosphere import isa
 from bild_mdo.verification.case_functions import bild_batch, optimize_case
-from bild_mdo.verification.cases import SweepSpec
+from bild_mdo.verification.cases import Case, SweepSpec
 from bild_mdo.verification.runner import run_sweep
 from bild_mdo.verification.store import RESULT_KEYS, ResultsStore
 
@@ -41,3 +42,19 @@ def test_sweep_of_two_cases(tmp_path):
         assert abs(row["opt_torque_coefficient"] / row["bild_torque_coefficient"] - 1.0) < 1e-2
         assert row["iterations"] > 0 and row["opt_time"] > 0.0 and row["bild_time"] > 0.0
         assert row["opt_chord"].shape == (30,)
+
+
+def test_an_infeasible_case_fails_alone_with_its_reason():
+    # This design overloads its reference station: u_theta_ref >= V_theta_ref, against the paper's
+    # Assumption 3, so BILD has no design for it; the other cases of the batch must keep theirs.
+    cases = SweepSpec(levels=2).cases()
+    reference = bild_batch(cases)
+    bad = dict(cases[5].inputs, v_axial=26.8, rpm=824.0, radius=1.277, reference_chord=0.200,
+               reference_radius=0.3006 * 1.277, hub_radius=0.2970 * 1.277, altitude=3533.0)
+    cases[5] = Case(5, bad)
+    results = bild_batch(cases)
+    assert [r["converged"] for r in results] == [k != 5 for k in range(16)]
+    assert "Assumption 3" in results[5]["error"]
+    for k in set(range(16)) - {5}:
+        assert results[k]["energy_loss"] == pytest.approx(reference[k]["energy_loss"], rel=1e-10)
+        np.testing.assert_allclose(results[k]["chord"], reference[k]["chord"], rtol=1e-10)

@@ -1,4 +1,4 @@
-"""Resume after a real SIGKILL of a running sweep."""
+"""Resume after a real SIGKILL of a running sweep; a second sweep on the same file while one runs."""
 import os
 import signal
 import sqlite3
@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from bild_mdo.verification import ResultsStore, SweepSpec, run_sweep
+from bild_mdo.verification.store import StoreBusyError
 from tests.verification import standins
 
 REPO_ROOT = Path(__file__).resolve().parents[2]
@@ -122,3 +123,36 @@ def test_sigkill_then_resume_stores_every_case_once(tmp_path, workers):
     for cid, row in before.items():
         assert after[cid]["finished_at"] == row["finished_at"]
         assert after[cid]["opt_power_coefficient"] == row["opt_power_coefficient"]
+
+
+def test_second_sweep_on_the_same_file_exits_at_once_and_loses_nothing(tmp_path):
+    db = tmp_path / "sweep.sqlite"
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(REPO_ROOT), os.environ.get("PYTHONPATH")])))
+    proc = subprocess.Popen([sys.executable, "-c", SWEEP_SCRIPT, str(db), "1"], cwd=tmp_path, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    try:
+        deadline = time.monotonic() + 30
+        while len(_stored_ids(db)) < 5:
+            assert proc.poll() is None, proc.communicate()[1].decode()[-2000:]
+            assert time.monotonic() < deadline, "the sweep stored no 5 rows within 30 s"
+            time.sleep(0.05)
+        start = time.monotonic()
+        with pytest.raises(StoreBusyError, match=f"another sweep is writing to '{db}'"):
+            run_sweep(SPEC, db, _never_called, _never_called, progress=False)
+        assert time.monotonic() - start < 5.0
+        _out, err = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    assert proc.returncode == 0, err.decode()[-2000:]
+    again = run_sweep(SPEC, db, _never_called, _never_called, progress=False)
+    assert again.computed_ids == [] and again.num_skipped == len(ALL_IDS)
+    conn = sqlite3.connect(db)
+    (count, distinct), = conn.execute("SELECT COUNT(*), COUNT(DISTINCT case_id) FROM results").fetchall()
+    conn.close()
+    assert count == distinct == len(ALL_IDS)
+
+
+def _never_called(*args):
+    raise AssertionError("the second sweep must not compute anything")

@@ -8,9 +8,9 @@ Modules
 polar_data
     :class:`PolarData`, :class:`PolarFileError` and the row checks every file reader shares.
 readers
-    XFOIL ``PACC`` polar files and plain tables (read and write); the built-in NACA 4412 data.
+    XFOIL ``PACC`` polar files and plain tables (read and write; folders and lists); the built-in NACA 4412 data.
 coordinates
-    The ``airfoil`` argument of the generators: a NACA 4-digit designation or a Selig coordinates file.
+    The ``airfoil`` argument of the generators: a NACA 4- or 5-digit designation or a Selig coordinates file.
 xfoil
     Run XFOIL (``python -m bild_mdo.airfoil.sources.xfoil`` writes the tables in ``airfoil/data``).
 neuralfoil
@@ -22,10 +22,12 @@ here, so ``python -m bild_mdo.airfoil.sources.xfoil`` runs the module once.
 """
 from bild_mdo.airfoil.sources.coordinates import parse_airfoil, read_coordinates
 from bild_mdo.airfoil.sources.polar_data import MIN_POINTS, PolarData, PolarFileError
-from bild_mdo.airfoil.sources.readers import (available_builtin_polars, load_builtin_polars, read_polar_table,
-                                              read_xfoil_polar, write_polar_table)
+from bild_mdo.airfoil.sources.readers import (available_builtin_polars, load_builtin_polars, read_polar_file,
+                                              read_polar_files, read_polar_table, read_xfoil_polar,
+                                              write_polar_table)
 
 __all__ = [
     "MIN_POINTS", "PolarData", "PolarFileError", "available_builtin_polars", "load_builtin_polars",
-    "parse_airfoil", "read_coordinates", "read_polar_table", "read_xfoil_polar", "write_polar_table",
+    "parse_airfoil", "read_coordinates", "read_polar_file", "read_polar_files", "read_polar_table",
+    "read_xfoil_polar", "write_polar_table",
 ]

@@ -1,4 +1,4 @@
-"""Airfoil shape arguments shared by the polar generators: a NACA 4-digit designation or a coordinates file.
+"""Airfoil shape arguments shared by the polar generators: a NACA 4- or 5-digit designation or a coordinates file.
 
 :mod:`bild_mdo.airfoil.sources.xfoil` and :mod:`bild_mdo.airfoil.sources.neuralfoil`
 accept the same ``airfoil`` argument; :func:`parse_airfoil` classifies it and
@@ -18,12 +18,12 @@ _NACA4 = re.compile(r"^\s*(?:naca)?[\s_-]*(\d+)\s*$", re.IGNORECASE)
 
 
 def parse_airfoil(airfoil):
-    """Classify an airfoil argument as a NACA 4-digit designation or a coordinates file.
+    """Classify an airfoil argument as a NACA 4- or 5-digit designation or a coordinates file.
 
     Parameters
     ----------
     airfoil : str or os.PathLike
-        ``"NACA 4412"``, ``"naca4412"``, ``"4412"`` or the path of a
+        ``"NACA 4412"``, ``"naca4412"``, ``"4412"``, ``"NACA 23012"`` or the path of a
         coordinates file (Selig format: an optional name line, then ``x y``
         rows from the trailing edge over the upper surface to the leading
         edge and back along the lower surface).
@@ -36,7 +36,7 @@ def parse_airfoil(airfoil):
     Raises
     ------
     ValueError
-        A NACA designation that is not 4 digits or has zero thickness, or a
+        A NACA designation that is not 4 or 5 digits or has zero thickness, or a
         string that is neither a designation nor an existing file.
     """
     if isinstance(airfoil, os.PathLike):
@@ -48,18 +48,21 @@ def parse_airfoil(airfoil):
     m = _NACA4.match(text)
     if m:
         digits = m.group(1)
-        if len(digits) != 4:
-            raise ValueError(f"airfoil {text!r}: only NACA 4-digit designations are supported "
+        if len(digits) not in (4, 5):
+            raise ValueError(f"airfoil {text!r}: only NACA 4- and 5-digit designations are supported "
                              f"(got {len(digits)} digits); for other sections pass a coordinates file")
-        if int(digits[2:]) == 0:
+        if len(digits) == 5 and not (digits[0] != "0" and digits[1] in "12345" and digits[2] in "01"):
+            raise ValueError(f"airfoil {text!r}: a NACA 5-digit designation is L P Q TT with P in 1-5 and "
+                             "Q 0 (normal) or 1 (reflexed), e.g. 23012")
+        if int(digits[-2:]) == 0:
             raise ValueError(f"airfoil {text!r}: the last two digits give the thickness in percent "
                              f"of chord and must not be 00")
         return "naca", digits
     path = Path(text)
     if path.is_file():
         return "file", path
-    raise ValueError(f"airfoil {text!r} is neither a NACA 4-digit designation ('NACA 4412', "
-                     f"'naca4412', '4412') nor an existing coordinates file")
+    raise ValueError(f"airfoil {text!r} is neither a NACA 4- or 5-digit designation ('NACA 4412', "
+                     f"'naca23012', '4412') nor an existing coordinates file")
 
 
 def read_coordinates(path):

@@ -6,12 +6,19 @@ Two formats are read:
   ``Mach = ... Re = ... e 6 Ncrit = ...``, a line of column names
   (``alpha CL CD CDp CM Top_Xtr Bot_Xtr ...``), a line of dashes, then rows.
   Read with :func:`read_xfoil_polar`.
-* A plain table, whitespace- or comma-separated, whose first non-comment line
-  names the columns (``alpha_deg``, ``cl``, ``cd`` in any order, other columns
-  ignored).  ``#`` starts a comment.  Comment lines of the form
-  ``# reynolds = 1e6`` (also ``mach``, ``ncrit``, ``source``) carry the
-  operating condition, so a table written by :func:`write_polar_table` reads
-  back without extra arguments.  Read with :func:`read_polar_table`.
+* A plain table, whitespace- or comma-separated, with a line naming the
+  columns (angle ``alpha``, ``alpha_deg``, ``AoA`` or ``Alpha``; ``CL``/``cl``;
+  ``CD``/``cd``; any case, any order, other columns ignored) before the rows.
+  ``#`` starts a comment.  Comment lines of the form ``# reynolds = 1e6``
+  (also ``mach``, ``ncrit``, ``source``) carry the operating condition, so a
+  table written by :func:`write_polar_table` reads back without extra
+  arguments.  Text lines before the column line are a preamble and skipped,
+  except ``key,value`` (or ``key = value``, ``key: value``) lines that give
+  ``Reynolds number``, ``Re``, ``Mach`` or ``Ncrit``: an airfoiltools.com CSV
+  reads as it is downloaded.  Read with :func:`read_polar_table`.
+
+:func:`read_polar_file` tells the two formats apart, and :func:`read_polar_files`
+reads a list of files or a folder (several Reynolds and Mach numbers).
 
 Every problem found in a file raises
 :class:`~bild_mdo.airfoil.sources.polar_data.PolarFileError` with a message
@@ -36,6 +43,8 @@ __all__ = [
     "available_builtin_polars",
     "load_builtin_polars",
     "parse_xfoil_file",
+    "read_polar_file",
+    "read_polar_files",
     "read_polar_table",
     "read_xfoil_polar",
     "write_polar_table",
@@ -45,6 +54,18 @@ _DATA_PACKAGE = "bild_mdo.airfoil"
 _DATA_FOLDER = "data"
 _BUILTIN_PATTERN = re.compile(r"^(?P<name>.+)_re(?P<re>\d+)\.txt$")
 _TABLE_COLUMNS = ("alpha_deg", "cl", "cd")
+# Column spellings (compared lower-case, without spaces or quotes) -> the column they name.
+_COLUMN_ALIASES = {
+    **{a: "alpha_deg" for a in ("alpha", "alpha_deg", "aoa", "aoa_deg", "alpha(deg)", "alpha[deg]",
+                                "aoa(deg)", "aoa[deg]", "alpha_(deg)")},
+    "cl": "cl", "c_l": "cl", "cd": "cd", "c_d": "cd",
+}
+# Preamble keys (lower case, spaces removed) -> operating condition.
+_PREAMBLE_KEYS = {"reynolds": "reynolds", "reynoldsnumber": "reynolds", "re": "reynolds", "mach": "mach",
+                  "machnumber": "mach", "ncrit": "ncrit", "n_crit": "ncrit"}
+_PREAMBLE_SPLIT = re.compile(r"\s*[,=:]\s*")
+_RE_IN_NAME = re.compile(r"(?:^|[_\-. ])re[_\-=]?(\d+(?:\.\d+)?(?:e[+]?\d+)?)(?![\d.])")
+_POLAR_SUFFIXES = {".txt", ".dat", ".csv", ".pol", ".polar"}
 
 
 # XFOIL writes "Re =     1.000 e 6": mantissa and exponent separated by " e ".
@@ -190,7 +211,7 @@ def read_polar_table(path, reynolds=None, mach=None):
     """
     path, lines = read_lines(path)
     meta = {}
-    columns = delimiter = header_line = None
+    columns = delimiter = header_line = candidate = None
     rows = []
     idx = None
     for lineno, raw in enumerate(lines, start=1):
@@ -202,17 +223,32 @@ def read_polar_table(path, reynolds=None, mach=None):
                 meta[key] = (value.strip(), lineno)
             continue
         if columns is None:
-            delimiter = "," if "," in body else None
-            columns = [c.lower() for c in _split(body, delimiter)]
-            header_line = lineno
-            missing = [c for c in _TABLE_COLUMNS if c not in columns]
-            if missing:
-                looks_numeric = all(_is_number(c) for c in columns)
-                hint = ("the first row holds numbers: add a header line naming the columns, "
-                        "e.g. 'alpha_deg cl cd'") if looks_numeric else (
-                        f"found columns {columns}, missing {missing}")
-                raise PolarFileError(f"{path}:{lineno}: missing header: {hint}")
-            idx = [columns.index(c) for c in _TABLE_COLUMNS]
+            line_delimiter = "," if "," in body else None
+            tokens = [t.strip().strip("\"'") for t in _split(body, line_delimiter)]
+            named = [_COLUMN_ALIASES.get(t.lower().replace(" ", "")) for t in tokens]
+            if all(c in named for c in _TABLE_COLUMNS):
+                delimiter, columns, header_line = line_delimiter, [t.lower() for t in tokens], lineno
+                idx = [named.index(c) for c in _TABLE_COLUMNS]
+                continue
+            filled = [t for t in tokens if t]
+            if not filled:
+                continue
+            if all(_is_number(t) for t in filled):
+                if candidate is not None:
+                    c_line, c_tokens = candidate
+                    missing = [c for c in _TABLE_COLUMNS if c not in
+                               [_COLUMN_ALIASES.get(t.lower().replace(" ", "")) for t in c_tokens]]
+                    raise PolarFileError(f"{path}:{c_line}: missing header: found columns {c_tokens}, "
+                                         f"missing {missing} (angle: alpha, alpha_deg, AoA; lift: cl; drag: cd)")
+                raise PolarFileError(f"{path}:{lineno}: missing header: the first row holds numbers: add a "
+                                     "header line naming the columns, e.g. 'alpha_deg cl cd'")
+            # A preamble line: keep the operating condition it may give.
+            parts = _PREAMBLE_SPLIT.split(body.strip(), maxsplit=1)
+            key = parts[0].lower().replace(" ", "")
+            if len(parts) == 2 and key in _PREAMBLE_KEYS and _is_number(parts[1].split()[0] if parts[1] else ""):
+                meta.setdefault(_PREAMBLE_KEYS[key], (parts[1].split()[0], lineno))
+            elif len(filled) >= 3:
+                candidate = (lineno, [t.lower() for t in filled])
             continue
         tokens = _split(body, delimiter)
         if len(tokens) != len(columns):
@@ -231,10 +267,12 @@ def read_polar_table(path, reynolds=None, mach=None):
             raise PolarFileError(f"{path}:{lineno}: malformed number {value!r} for {key}") from None
 
     file_re = meta_float("reynolds") if "reynolds" in meta else None
+    if file_re is None and (m := _RE_IN_NAME.search(path.stem.lower())):
+        file_re = float(m.group(1))
     if reynolds is None:
         if file_re is None:
             raise PolarFileError(f"{path}: no Reynolds number: pass reynolds=... or add a line "
-                                 f"'# reynolds = <value>' to the file")
+                                 f"'# reynolds = <value>' to the file (or name it like 'foil_re500000.txt')")
         reynolds = file_re
     elif file_re is not None and not math.isclose(float(reynolds), file_re, rel_tol=1e-9):
         raise PolarFileError(f"{path}:{meta['reynolds'][1]}: file says reynolds = {file_re:g} "
@@ -249,6 +287,61 @@ def read_polar_table(path, reynolds=None, mach=None):
         raise
     except ValueError as exc:
         raise PolarFileError(f"{path}: {exc}") from None
+
+
+def read_polar_file(path):
+    """Read one polar file (a path): an XFOIL saved polar or a plain table, told apart by XFOIL's ``Re =`` header.
+
+    Returns a :class:`PolarData`; raises :class:`PolarFileError` as
+    :func:`read_xfoil_polar` or :func:`read_polar_table` do.
+    """
+    path, lines = read_lines(path)
+    head = lines[:20]
+    if any(_XFOIL_RE.search(line) and "mach" in line.lower() for line in head) and any(
+            set(line.replace(" ", "")) == {"-"} for line in lines[:40] if line.strip()):
+        return read_xfoil_polar(path)
+    return read_polar_table(path)
+
+
+def read_polar_files(paths):
+    """Read several polar files, or every polar file in a folder (``.txt .dat .csv .pol .polar``).
+
+    Parameters
+    ----------
+    paths : str, os.PathLike or sequence of them
+        Files, or one folder.
+
+    Returns
+    -------
+    list of PolarData
+        Sorted by Mach number, then Reynolds number.
+
+    Raises
+    ------
+    PolarFileError
+        An unreadable file (the message names it and the line), an empty
+        folder, or two files at the same Reynolds and Mach numbers.
+    """
+    if isinstance(paths, (str, os.PathLike)):
+        paths = [paths]
+    files = []
+    for p in map(Path, paths):
+        if p.is_dir():
+            found = sorted(f for f in p.iterdir() if f.is_file() and f.suffix.lower() in _POLAR_SUFFIXES)
+            if not found:
+                raise PolarFileError(f"{p}: no polar files ({', '.join(sorted(_POLAR_SUFFIXES))}) in this folder")
+            files += found
+        else:
+            files.append(p)
+    polars = [read_polar_file(f) for f in files]
+    seen = {}
+    for f, polar in zip(files, polars):
+        key = (polar.reynolds, polar.mach)
+        if key in seen:
+            raise PolarFileError(f"{f}: Re = {polar.reynolds:g}, Mach = {polar.mach:g} again (also in "
+                                 f"{seen[key]}); give one file per Reynolds and Mach number")
+        seen[key] = f
+    return sorted(polars, key=lambda q: (q.mach, q.reynolds))
 
 
 def _is_number(token):

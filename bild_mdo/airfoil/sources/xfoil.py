@@ -44,7 +44,7 @@ from bild_mdo.airfoil.sources.coordinates import parse_airfoil, read_coordinates
 from bild_mdo.airfoil.sources.polar_data import PolarData
 from bild_mdo.airfoil.sources.readers import parse_xfoil_file, write_polar_table
 
-__all__ = ["main", "polar_file_name", "run_xfoil", "xfoil_version"]
+__all__ = ["main", "polar_file_name", "require_programs", "run_xfoil", "xfoil_version"]
 
 INSTALL_HINT = "apt-get install xfoil xvfb"
 
@@ -53,6 +53,11 @@ _ALPHA_DECIMALS = 3
 _ALPHA_MATCH_TOL = 0.6 * 10.0 ** -_ALPHA_DECIMALS
 
 _VERSION = re.compile(r"XFOIL\s+Version\s+([\w.]+)")
+
+
+def require_programs():
+    """Raise ``RuntimeError`` (with the install command) unless ``xfoil`` and ``xvfb-run`` are on PATH."""
+    _require_programs()
 
 
 def _require_programs():
@@ -273,24 +278,27 @@ def _alpha_grid(start, stop, step):
     return np.round(start + step * np.arange(n + 1), _ALPHA_DECIMALS)
 
 
-def polar_file_name(name, reynolds):
-    """File name ``<name>_re<Re>.txt`` used by the CLI and the built-in data."""
-    return f"{name}_re{int(round(reynolds))}.txt"
+def polar_file_name(name, reynolds, mach=None):
+    """File name ``<name>_re<Re>.txt`` (with ``mach``: ``<name>_re<Re>_mach<M>.txt``) used by the CLI and the built-in data."""
+    suffix = "" if mach is None else f"_mach{mach:g}"
+    return f"{name}_re{int(round(reynolds))}{suffix}.txt"
 
 
 def main(argv=None):
     """Command-line entry point; see the module docstring."""
     parser = argparse.ArgumentParser(
         prog="python -m bild_mdo.airfoil.sources.xfoil",
-        description="Run XFOIL (under xvfb-run) and write one polar table per Reynolds number.")
+        description="Run XFOIL (under xvfb-run) and write one polar table per Reynolds (and Mach) number.")
     parser.add_argument("--airfoil", required=True,
-                        help="NACA 4-digit designation ('4412', 'NACA 4412') or a Selig coordinates file")
+                        help="NACA 4- or 5-digit designation ('4412', 'NACA 23012') or a Selig coordinates file")
     parser.add_argument("--re", required=True, nargs="+", type=float, metavar="RE",
                         help="chord Reynolds numbers")
     parser.add_argument("--alpha", required=True, nargs=3, type=float, metavar=("START", "STOP", "STEP"),
                         help="angle-of-attack grid in degrees, STOP included")
     parser.add_argument("--out", required=True, type=Path, help="output folder (created if missing)")
-    parser.add_argument("--mach", type=float, default=0.0, help="Mach number (default 0)")
+    parser.add_argument("--mach", type=float, nargs="+", default=[0.0], metavar="M",
+                        help="Mach number(s) (default 0); several write one table per Reynolds and Mach "
+                             "number, named <name>_re<Re>_mach<M>.txt (a Mach-dependent polar set)")
     parser.add_argument("--ncrit", type=float, default=9.0, help="e^N amplification factor (default 9)")
     parser.add_argument("--max-iter", type=int, default=200, help="XFOIL iteration limit per point")
     parser.add_argument("--name", default=None,
@@ -303,21 +311,26 @@ def main(argv=None):
     except ValueError as exc:
         parser.error(str(exc))
     name = args.name or (f"naca{spec}" if kind == "naca" else spec.stem.lower())
-    t0 = time.perf_counter()
-    polars, report = run_xfoil(args.airfoil, args.re, alpha, mach=args.mach, ncrit=args.ncrit,
-                               max_iter=args.max_iter)
-    elapsed = time.perf_counter() - t0
-    args.out.mkdir(parents=True, exist_ok=True)
-    print(f"XFOIL {xfoil_version()}, {name}, {alpha.size} angles {alpha[0]:g}..{alpha[-1]:g} deg, "
-          f"Mach {args.mach:g}, Ncrit {args.ncrit:g}, {elapsed:.1f} s")
-    print(f"{'Re':>10} {'points':>6} {'dropped':>7} {'max L/D':>8} {'at alpha':>8}")
-    for polar in polars:
-        path = args.out / polar_file_name(name, polar.reynolds)
-        write_polar_table(path, polar)
-        ld = polar.lift_to_drag
-        k = int(np.argmax(ld))
-        print(f"{polar.reynolds:>10g} {polar.alpha_deg.size:>6d} {report[polar.reynolds]:>7d} "
-              f"{ld[k]:>8.1f} {polar.alpha_deg[k]:>8.2f}  -> {path}")
+    several = len(args.mach) > 1
+    for mach in args.mach:
+        t0 = time.perf_counter()
+        try:
+            polars, report = run_xfoil(args.airfoil, args.re, alpha, mach=mach, ncrit=args.ncrit,
+                                       max_iter=args.max_iter)
+        except ValueError as exc:
+            parser.error(str(exc))
+        elapsed = time.perf_counter() - t0
+        args.out.mkdir(parents=True, exist_ok=True)
+        print(f"XFOIL {xfoil_version()}, {name}, {alpha.size} angles {alpha[0]:g}..{alpha[-1]:g} deg, "
+              f"Mach {mach:g}, Ncrit {args.ncrit:g}, {elapsed:.1f} s")
+        print(f"{'Re':>10} {'points':>6} {'dropped':>7} {'max L/D':>8} {'at alpha':>8}")
+        for polar in polars:
+            path = args.out / polar_file_name(name, polar.reynolds, mach if several else None)
+            write_polar_table(path, polar)
+            ld = polar.lift_to_drag
+            k = int(np.argmax(ld))
+            print(f"{polar.reynolds:>10g} {polar.alpha_deg.size:>6d} {report[polar.reynolds]:>7d} "
+                  f"{ld[k]:>8.1f} {polar.alpha_deg[k]:>8.2f}  -> {path}")
     return 0
 
 

@@ -1,4 +1,4 @@
-"""The airfoil argument of the polar generators: NACA 4-digit designations and Selig coordinate files."""
+"""The airfoil argument of the polar generators: NACA 4- and 5-digit designations and Selig coordinate files."""
 import re
 
 import numpy as np
@@ -12,11 +12,19 @@ def test_parse_naca_designations(name):
     assert parse_airfoil(name) == ("naca", "4412")
 
 
+@pytest.mark.parametrize("name", ["NACA 23012", "naca23015", "23112"])
+def test_parse_naca_five_digit_designations(name):
+    # NACA 5-digit series (Jacobs & Pinkerton 1935): L P Q TT, P = 1..5, Q = 0 or 1.
+    assert parse_airfoil(name) == ("naca", name.lower().replace("naca", "").strip())
+
+
 @pytest.mark.parametrize("name, pattern", [
-    ("NACA 23012", "only NACA 4-digit designations"),
-    ("naca 441", "only NACA 4-digit designations"),
+    ("NACA 230120", "only NACA 4- and 5-digit designations"),
+    ("naca 441", "only NACA 4- and 5-digit designations"),
+    ("naca 29012", "L P Q TT with P in 1-5"),
     ("naca4400", "must not be 00"),
-    ("clark-y", "neither a NACA 4-digit designation"),
+    ("naca23000", "must not be 00"),
+    ("clark-y", "neither a NACA 4- or 5-digit designation"),
 ])
 def test_parse_airfoil_rejects(name, pattern):
     with pytest.raises(ValueError, match=pattern):

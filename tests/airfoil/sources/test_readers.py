@@ -9,6 +9,7 @@ from bild_mdo.airfoil.sources.polar_data import MIN_POINTS, PolarData, PolarFile
 from bild_mdo.airfoil.sources.readers import (
     available_builtin_polars,
     load_builtin_polars,
+    read_polar_files,
     read_polar_table,
     read_xfoil_polar,
     write_polar_table,
@@ -267,7 +268,7 @@ def test_table_missing_header(tmp_path):
     path.write_text(_table_text(header="0.0 0.1 0.01", meta="# just numbers\n"))
     with pytest.raises(PolarFileError, match=rf"{_p(path)}:2: missing header: the first row holds numbers"):
         read_polar_table(path, reynolds=1e5)
-    path.write_text(_table_text(header="alpha cl cd"))
+    path.write_text(_table_text(header="angle cl cd"))
     with pytest.raises(PolarFileError, match=rf"{_p(path)}:2: missing header: .*missing \['alpha_deg'\]"):
         read_polar_table(path)
     path.write_text("# only comments\n\n")
@@ -307,3 +308,63 @@ def test_builtin_loader_names():
         [p.reynolds for p in load_builtin_polars("naca-4412")]
     with pytest.raises(ValueError, match=r"no built-in polars named 'naca0012'; available: .*naca4412"):
         load_builtin_polars("naca0012")
+
+
+# Usual spellings of the three columns (alpha, cl, cd), with an extra column and the comma or space separator.
+@pytest.mark.parametrize("header, order", [
+    ("alpha,cl,cd", "acd"), ("Alpha CL CD", "acd"), ("AoA,CL,CD,Cm", "acdx"), ("alpha_deg cd cl", "adc"),
+    ("ALPHA Cl Cd Cdp", "acdx"), ("aoa(deg) c_l c_d", "acd"),
+])
+def test_table_column_spellings(tmp_path, header, order):
+    rows = [(-4.0 + i, 0.1 * i, 0.01 + 0.001 * i) for i in range(12)]
+    sep = "," if "," in header else " "
+    lines = [header] + [sep.join(str({"a": a, "c": cl, "d": cd, "x": 0.0}[k]) for k in order) for a, cl, cd in rows]
+    path = tmp_path / "spelled_re250000.txt"
+    path.write_text("\n".join(lines) + "\n")
+    data = read_polar_table(path)
+    assert data.reynolds == 250000.0          # from the file name
+    np.testing.assert_array_equal(data.alpha_deg, [r[0] for r in rows])
+    np.testing.assert_array_equal(data.cl, [r[1] for r in rows])
+    np.testing.assert_array_equal(data.cd, [r[2] for r in rows])
+
+
+AIRFOILTOOLS = """Xfoil polar. Reynolds number fixed. Mach number fixed
+Polar key,xf-naca2412-il-200000
+Airfoil,naca2412-il
+Reynolds number,200000
+Ncrit,9
+Mach,0
+Max Cl/Cd,76.1
+Max Cl/Cd alpha,6.25
+Url,http://airfoiltools.com/polar/csv?polar=xf-naca2412-il-200000
+,
+Alpha,Cl,Cd,Cdp,Cm,Top_Xtr,Bot_Xtr
+"""
+
+
+def test_airfoiltools_csv_with_its_preamble(tmp_path):
+    rows = [f"{-5 + i:.3f},{0.2 + 0.1 * i:.4f},{0.01 + 0.0005 * i:.5f},0.004,-0.05,0.6,1.0" for i in range(12)]
+    path = tmp_path / "xf-naca2412-il-200000.csv"
+    path.write_text(AIRFOILTOOLS + "\n".join(rows) + "\n")
+    data = read_polar_table(path)
+    assert (data.reynolds, data.mach, data.ncrit) == (200000.0, 0.0, 9.0)
+    assert data.alpha_deg[0] == -5.0 and data.cd[-1] == pytest.approx(0.0155)
+    # Errors after the preamble still name the file and the line (row 5 is line 16).
+    rows[4] = "-1.000,0.6x00,0.01200,0.004,-0.05,0.6,1.0"
+    path.write_text(AIRFOILTOOLS + "\n".join(rows) + "\n")
+    with pytest.raises(PolarFileError, match=rf"{_p(path)}:16: malformed number '0\.6x00' in column 'cl'"):
+        read_polar_table(path)
+
+
+def test_read_polar_files_reads_a_folder_of_both_formats(tmp_path):
+    (tmp_path / "a.pol").write_text(_xfoil_text())
+    (tmp_path / "b_re50000.txt").write_text(_table_text(meta=""))
+    (tmp_path / "notes.md").write_text("not a polar")
+    polars = read_polar_files(tmp_path)
+    assert sorted(p.reynolds for p in polars) == sorted([read_xfoil_polar(tmp_path / "a.pol").reynolds, 5e4])
+    (tmp_path / "c.txt").write_text(_table_text(meta="# reynolds = 50000\n"))
+    with pytest.raises(PolarFileError, match=r"c\.txt: Re = 50000, Mach = 0 again \(also in .*b_re50000\.txt\)"):
+        read_polar_files(tmp_path)
+    (tmp_path / "empty").mkdir()
+    with pytest.raises(PolarFileError, match="empty: no polar files"):
+        read_polar_files(tmp_path / "empty")

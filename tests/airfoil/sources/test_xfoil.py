@@ -198,3 +198,19 @@ def test_cli_writes_readable_tables(tmp_path, capsys):
 def test_xfoil_version():
     _skip_without_xfoil()
     assert re.fullmatch(r"\d+\.\d+\w*", xfoil.xfoil_version())
+
+
+def test_cli_several_mach_numbers_make_a_mach_dependent_polar_set(tmp_path, capsys):
+    _skip_without_xfoil()
+    from bild_mdo.airfoil import MachTabulatedPolar, resolve_polar
+
+    out = tmp_path / "polars"
+    argv = ["--airfoil", "0012", "--re", "1e6", "--alpha", "-4", "9", "1", "--mach", "0", "0.5", "--out", str(out)]
+    assert xfoil.main(argv) == 0
+    assert sorted(p.name for p in out.iterdir()) == ["naca0012_re1000000_mach0.5.txt", "naca0012_re1000000_mach0.txt"]
+    assert read_polar_table(out / "naca0012_re1000000_mach0.5.txt").mach == 0.5
+    polar = resolve_polar(out)
+    assert isinstance(polar, MachTabulatedPolar) and polar.machs.tolist() == [0.0, 0.5]
+    # XFOIL's compressible lift at small angles exceeds the incompressible one (Prandtl-Glauert: 1/beta).
+    v = polar.evaluate(np.radians(2.0), 1e6, mach=[0.0, 0.5])
+    assert 1.1 < v.cl[1] / v.cl[0] < 1.25 and v.dcl_dmach[1] > 0.0
