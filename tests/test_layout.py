@@ -14,7 +14,7 @@ PACKAGE = pathlib.Path(__file__).resolve().parents[1] / "bild_mdo"
 MAX_LINES = 450
 
 # The data flow, bottom to top; a module may import its own layer and the layers below it.
-LAYERS = ("constants", "utils", "validation", "airfoil", "atmosphere", "bem", "bild", "mil", "optimization",
+LAYERS = ("constants", "utils", "validation", "airfoil", "atmosphere", "bem", "bild", "mil", "multipoint", "optimization",
           "verification", "io", "results", "plots", "cli")
 
 
