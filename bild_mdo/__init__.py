@@ -19,12 +19,13 @@ from bild_mdo.bem import BEMAnalysisGroup, BEMResult, BEMStateWarning, analyze_r
 from bild_mdo.bild import BILDGroup
 from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
 from bild_mdo.mil import MILGroup, design_mil
+from bild_mdo.multipoint import MultipointRotorGroup
 from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_design_sweep
 
 __all__ = [
     "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
-    "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar", "OffDesignResult", "Polar",
+    "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar", "MultipointRotorGroup", "OffDesignResult", "Polar",
     "RotorGeometry", "SpanwisePolar", "TabulatedPolar", "__version__", "analyze_rotor", "design_mil", "design_rotor",
     "get_polar", "isa", "naca4412", "off_design_sweep", "read_geometry", "resolve_polar", "spanwise_polar",
     "write_geometry",

@@ -156,55 +156,6 @@ INITIAL_DESIGN = {"radius": np.array([0.6, 0.7]), "rpm": np.array([1800.0, 1600.
                   "ref_chord": np.array([0.15, 0.1]), "gross_mass": 700.0}
 
 
-class TipMachComp(om.ExplicitComponent):
-    """Helical tip Mach number ``M = sqrt((Omega R)^2 + V_x^2) / a``.
-
-    Options
-    -------
-    num_nodes : int
-        Number of rotors / operating points.
-
-    Inputs
-    ------
-    rpm[nn] (rpm), radius[nn] (m), v_axial[nn] (m/s), speed_of_sound[nn] (m/s)
-
-    Outputs
-    -------
-    tip_mach[nn] (-)
-    """
-
-    def initialize(self):
-        self.options.declare("num_nodes", types=int, default=1, desc="number of rotors / operating points")
-
-    def setup(self):
-        nn = self.options["num_nodes"]
-        self.add_input("rpm", val=np.full(nn, 1000.0), units="rpm", desc="rotor speed")
-        self.add_input("radius", val=np.ones(nn), units="m", desc="tip radius")
-        self.add_input("v_axial", val=np.zeros(nn), units="m/s", desc="axial flight speed")
-        self.add_input("speed_of_sound", val=np.full(nn, 340.3), units="m/s", desc="speed of sound")
-        self.add_output("tip_mach", val=np.full(nn, 0.3), units=None, desc="helical tip Mach number")
-
-    def setup_partials(self):
-        ar = np.arange(self.options["num_nodes"])
-        self.declare_partials("tip_mach", ["rpm", "radius", "v_axial", "speed_of_sound"], rows=ar, cols=ar)
-
-    def _speeds(self, inputs):
-        omega = inputs["rpm"] * (np.pi / 30.0)
-        tip_speed = omega * inputs["radius"]
-        return omega, tip_speed, np.sqrt(tip_speed**2 + inputs["v_axial"] ** 2)
-
-    def compute(self, inputs, outputs):
-        outputs["tip_mach"] = self._speeds(inputs)[2] / inputs["speed_of_sound"]
-
-    def compute_partials(self, inputs, partials):
-        omega, tip_speed, helical = self._speeds(inputs)
-        a = inputs["speed_of_sound"]
-        partials["tip_mach", "rpm"] = tip_speed * inputs["radius"] * (np.pi / 30.0) / (a * helical)
-        partials["tip_mach", "radius"] = tip_speed * omega / (a * helical)
-        partials["tip_mach", "v_axial"] = inputs["v_axial"] / (a * helical)
-        partials["tip_mach", "speed_of_sound"] = -helical / a**2
-
-
 class MissionEnergyComp(om.ExplicitComponent):
     """Electric power in hover and cruise and the mission energy.
 
@@ -458,10 +409,7 @@ def build_model(model, assumptions, num_radial):
                         promotes_inputs=["v_axial", "altitude", "rpm", "radius", "ref_chord",
                                          "hub_radius_ratio", "ref_radius_ratio"],
                         promotes_outputs=["thrust", "power", "torque", "efficiency", "figure_of_merit",
-                                          "solidity", "chord", "twist"])
-    model.add_subsystem("tip_mach", TipMachComp(num_nodes=2), promotes_inputs=["rpm", "radius", "v_axial"],
-                        promotes_outputs=["tip_mach"])
-    model.connect("rotors.atmosphere.speed_of_sound", "tip_mach.speed_of_sound")
+                                          "solidity", "chord", "twist", "tip_mach"])
     model.add_subsystem("mission", MissionEnergyComp(num_lift_rotors=n_lift),
                         promotes_inputs=["power", "hover_time", "cruise_range", "cruise_speed",
                                          "drivetrain_efficiency"],

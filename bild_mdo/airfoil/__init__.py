@@ -39,12 +39,14 @@ from bild_mdo.airfoil.sources import (PolarData, load_builtin_polars, read_polar
                                       read_xfoil_polar)
 from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.airfoil.surrogate import TabulatedPolar
+from bild_mdo.airfoil.text import (DEFAULT_AIRFOIL, REYNOLDS_INDEPENDENT_AIRFOIL, FixedReynoldsPolar,
+                                   sweep_polar)
 
 __all__ = [
-    "AnalyticPolar", "CompressiblePolar", "MachPolarSecondDerivatives", "MachPolarValues", "MachTabulatedPolar",
+    "AnalyticPolar", "CompressiblePolar", "DEFAULT_AIRFOIL", "FixedReynoldsPolar", "MachPolarSecondDerivatives", "MachPolarValues", "MachTabulatedPolar",
     "MaxLiftToDrag", "Polar", "PolarData", "PolarSecondDerivatives", "PolarValues", "SpanwisePolar",
-    "StationMaxLiftToDrag", "StationPolarSecondDerivatives", "StationPolarValues", "TabulatedPolar",
+    "REYNOLDS_INDEPENDENT_AIRFOIL", "StationMaxLiftToDrag", "StationPolarSecondDerivatives", "StationPolarValues", "TabulatedPolar",
     "available_polars", "cache_dir", "clear_cache", "get_polar", "load_builtin_polars", "max_lift_to_drag",
     "naca4412", "polar_from_dict", "polar_to_dict", "read_polar_files", "read_polar_table", "read_xfoil_polar",
-    "resolve_polar", "spanwise_polar", "tabulated_polar",
+    "resolve_polar", "spanwise_polar", "sweep_polar", "tabulated_polar",
 ]

@@ -7,9 +7,9 @@ from typing import ClassVar
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.airfoil.polar import Polar
 from bild_mdo import validation
-from bild_mdo.atmosphere import MAX_ALTITUDE
+from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.atmosphere import MAX_ALTITUDE, isa
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.blade_element import evaluate_section
 from bild_mdo.bem.flow_states import ON_INVALID, SOLVE_RANGES
@@ -34,7 +34,8 @@ def station_radii(radius, hub_radius, num_radial):
 
 
 #: Per-station quantities of the analysis besides the section outputs: name -> units.
-_STATE_UNITS = {"rho": "kg/m**3", "mu": "Pa*s", "radii": "m", "dr": "m", "phi": "rad", "flow_state": None}
+_STATE_UNITS = {"rho": "kg/m**3", "mu": "Pa*s", "speed_of_sound": "m/s",
+                "radii": "m", "dr": "m", "phi": "rad", "flow_state": None}
 
 
 def _to_dict(self):
@@ -57,8 +58,9 @@ BEMResult = dataclasses.make_dataclass(
 )
 BEMResult.__doc__ = """Result of :func:`analyze_rotor`.
 
-    Per-design quantities (every entry of :data:`bild_mdo.bem.metrics.METRICS`, plus ``rho`` and
-    ``mu``) have shape ``(nn,)`` for a batch and are 0-d arrays for a single case; distributions
+    Per-design quantities (every entry of :data:`bild_mdo.bem.metrics.METRICS`, among them
+    ``tip_mach``, plus ``rho``, ``mu`` and ``speed_of_sound``) have shape ``(nn,)`` for a batch
+    and are 0-d arrays for a single case; distributions
     (``radii``, ``dr``, ``phi``, the section outputs of :data:`bild_mdo.bem.loads.SECTION_OUTPUTS`
     and the inflow ``residual``) have shape ``(nn, nr)`` or ``(nr,)``.  Units are listed in
     :attr:`UNITS` (SI; angles in rad; ``None`` = dimensionless).
@@ -77,6 +79,31 @@ BEMResult.__doc__ = """Result of :func:`analyze_rotor`.
     """
 
 
+#: Magnitudes the analysis accepts: name -> (lowest, highest, units).  They lie far beyond any rotor
+#: (a micrometre to 1,000 km, up to 1e12 rpm, a third of the speed of light) and keep the products and
+#: powers of the BEM (W^2, rho n^3 D^5, V_x / (Omega r)) inside the floating-point range, so an
+#: accepted input gives finite numbers instead of overflow.
+PLAUSIBLE_RANGES = {
+    "radius": (1e-6, 1e6, "m"), "hub_radius": (0.0, 1e6, "m"), "chord": (1e-9, 1e6, "m"),
+    "radii": (1e-6, 1e6, "m"), "dr": (1e-12, 1e6, "m"), "rpm": (1e-6, 1e12, "rpm"),
+    "v_axial": (0.0, 1e8, "m/s"), "rho": (1e-12, 1e6, "kg/m**3"), "mu": (1e-12, 1e6, "Pa*s"),
+    "speed_of_sound": (1e-3, 1e8, "m/s"), "num_blades": (1, 1000, None),
+    # Angles: one turn either way (a larger angle is the same blade; the polars take alpha in one turn).
+    "twist": (-2.0 * np.pi, 2.0 * np.pi, "rad"), "collective_pitch": (-2.0 * np.pi, 2.0 * np.pi, "rad"),
+}
+
+
+def _plausible(name, value):
+    """Reject a magnitude outside :data:`PLAUSIBLE_RANGES` with one line naming the bound and why."""
+    low, high, units = PLAUSIBLE_RANGES[name]
+    why = ("one turn either way; a larger angle is the same blade" if units == "rad" else
+           "far beyond any rotor; larger or smaller magnitudes would overflow the BEM's floating-point arithmetic")
+    # An integer count may exceed the float range: compare it capped.
+    arr = np.asarray(min(value, 10**300) if isinstance(value, int) else value, dtype=float)
+    bad = (arr > high) | (arr < low)
+    validation.check(name, arr, bad, f"within {low:g} ... {high:g}", units=units, hint=why)
+
+
 def _axes(value):
     """Names of the axes of a distribution argument, for error messages."""
     return ("design", "station") if np.ndim(value) == 2 else ("station",)
@@ -91,7 +118,7 @@ def _voronoi_widths(radii, hub_radius, radius):
 
 def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, polar,
                   altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None,
-                  on_invalid="warn", solve_range="physical"):
+                  on_invalid="warn", solve_range="physical", collective_pitch=0.0, speed_of_sound=None):
     """Analyse one rotor or a batch of rotors in axial flow with BEM theory.
 
     Parameters
@@ -109,11 +136,12 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         Freestream axial velocity (m/s), >= 0 (0 is hover).
     num_blades : int
         Number of blades.
-    polar : Polar
-        Airfoil polar.
+    polar : Polar or str
+        Airfoil polar, or any airfoil argument of :func:`bild_mdo.airfoil.resolve_polar`
+        (a built-in name such as ``'naca4412'`` or ``'analytic'``, a NACA designation, polar files).
     altitude : float or array_like
-        Geometric altitude (m) for the ISA, 0 ... 11,000.  Ignored where
-        ``rho`` and ``mu`` are both given.
+        Geometric altitude (m) for the ISA, 0 ... 11,000.  With ``rho`` and ``mu`` given it
+        sets only the speed of sound (unless ``speed_of_sound`` is given too).
     loss_model : {'tip_hub', 'tip', 'none'}
         Prandtl loss factor model.
     radii : array_like, optional
@@ -125,6 +153,11 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         neighbouring stations, bounded by hub and tip.
     rho, mu : float or array_like, optional
         Air density (kg/m^3) and viscosity (Pa s) overriding the ISA (give both).
+    speed_of_sound : float or array_like, optional
+        Speed of sound (m/s) for the Mach numbers, with ``rho`` and ``mu`` only; default the
+        ISA's at ``altitude``.
+    collective_pitch : float or array_like
+        Collective pitch (rad), scalar or ``(nn,)``, added to ``twist`` at every station.
 
     on_invalid : {'warn', 'raise', 'ignore'}
         Stations in a flow state the momentum model does not represent: no momentum solution
@@ -147,19 +180,22 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     Raises
     ------
     ValueError
-        Invalid input (the message names the argument).
+        Invalid input (the message names the argument), including magnitudes outside
+        :data:`PLAUSIBLE_RANGES` (far beyond any rotor; they would overflow the arithmetic).
     openmdao.api.AnalysisError
         With ``on_invalid='raise'`` and invalid stations; with ``solve_range='full'`` where no
         sign change exists; where the total torque is zero (no performance metrics).
     """
-    if not isinstance(polar, Polar):
-        raise ValueError(f"polar must be a bild_mdo.airfoil.Polar, got {type(polar).__name__}")
+    polar = resolve_polar(polar)
     validation.choice("loss_model", loss_model, LOSS_MODELS)
     validation.choice("on_invalid", on_invalid, ON_INVALID)
     validation.choice("solve_range", solve_range, SOLVE_RANGES)
     num_blades = validation.integer("num_blades", num_blades)
     if (rho is None) != (mu is None):
         raise ValueError("give both rho and mu, or neither (then the ISA at altitude is used)")
+    if speed_of_sound is not None and rho is None:
+        raise ValueError("speed_of_sound overrides the ISA together with rho and mu; give rho and mu too, "
+                         "or leave it out (then the ISA at altitude is used)")
 
     chord = validation.positive("chord", chord, units="m", ndim=(1, 2), axes=_axes(chord))
     twist = validation.real_array("twist", twist, units="rad", ndim=(1, 2))
@@ -171,11 +207,14 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
                "hub_radius": validation.non_negative("hub_radius", hub_radius, units="m"),
                "rpm": validation.positive("rpm", rpm, units="rpm"),
                "v_axial": validation.non_negative("v_axial", v_axial, units="m/s",
-                                                  hint="axial inflow from ahead; 0 is hover")}
-    if rho is None:
+                                                  hint="axial inflow from ahead; 0 is hover"),
+               "collective_pitch": validation.real_array("collective_pitch", collective_pitch, units="rad")}
+    if speed_of_sound is None:
         scalars["altitude"] = validation.in_range("altitude", altitude, 0.0, MAX_ALTITUDE, units="m",
                                                   hint="ISA troposphere")
     else:
+        scalars["speed_of_sound"] = validation.positive("speed_of_sound", speed_of_sound, units="m/s")
+    if rho is not None:
         scalars.update(rho=validation.positive("rho", rho, units="kg/m**3"),
                        mu=validation.positive("mu", mu, units="Pa*s"))
     sizes = {name: arr.size for name, arr in scalars.items() if arr.ndim == 1}
@@ -201,6 +240,11 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
 
     s = {k: per_node(v) for k, v in scalars.items()}
     chord, twist = per_station(chord), per_station(twist)
+    for name, value in (*s.items(), ("chord", chord), ("twist", twist), ("num_blades", num_blades)):
+        if name in PLAUSIBLE_RANGES:
+            _plausible(name, value)
+    for name, value in extra.items():
+        _plausible(name, value)
     if loss_model == "tip_hub":
         validation.check("hub_radius", s["hub_radius"], s["hub_radius"] <= 0.0, "positive with loss_model='tip_hub'",
                          hint="use 'tip' without a hub")
@@ -223,13 +267,16 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         raise ValueError("dr needs radii (station widths belong to given station radii)")
 
     use_atmosphere = "rho" not in s
+    if not use_atmosphere and "speed_of_sound" not in s:
+        s["speed_of_sound"] = np.asarray(isa(s["altitude"]).speed_of_sound, dtype=float)
+    validation.memory_bound("designs", nn, nr, hint="analyse in smaller batches or with fewer stations")
     prob = om.Problem(BEMAnalysisGroup(num_nodes=nn, num_radial=nr, num_blades=int(num_blades),
                                        polar=polar, loss_model=loss_model,
                                        use_atmosphere=use_atmosphere, on_invalid=on_invalid,
                                        solve_range=solve_range, **group_kw),
                       reports=False)
     prob.setup(check=False)
-    for name in ("radius", "hub_radius", "rpm", "v_axial"):
+    for name in ("radius", "hub_radius", "rpm", "v_axial", "collective_pitch"):
         prob.set_val(name, s[name])
     prob.set_val("chord", chord)
     prob.set_val("twist", twist)
@@ -238,12 +285,14 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     else:
         prob.set_val("rho", s["rho"])
         prob.set_val("mu", s["mu"])
+        prob.set_val("speed_of_sound", s["speed_of_sound"])
     prob.run_model()
 
     fields = {f.name: np.array(prob.get_val(f.name)) for f in dataclasses.fields(BEMResult)
               if f.name != "residual"}
     node = {name: fields[name][:, None] if name in fields else s[name][:, None]
-            for name in ("v_axial", "rpm", "rho", "mu", "radius", "hub_radius")}
+            for name in ("v_axial", "rpm", "rho", "mu", "radius", "hub_radius", "speed_of_sound",
+                         "collective_pitch")}
     values, _ = evaluate_section(fields["phi"], radii=fields["radii"], chord=chord, twist=twist,
                                  num_blades=int(num_blades), polar=polar, loss_model=loss_model,
                                  loads=False, partials=False, **node)

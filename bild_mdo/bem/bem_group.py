@@ -10,7 +10,7 @@ from bild_mdo.bem.flow_states import declare_flow_state_options
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
-from bild_mdo.bem.performance import RotorPerformanceComp
+from bild_mdo.bem.performance import SEA_LEVEL_SPEED_OF_SOUND, RotorPerformanceComp
 from bild_mdo.bem.stations import StationsComp
 
 
@@ -26,8 +26,8 @@ class BEMAnalysisGroup(om.Group):
         Sizes, blades, airfoil polar (not recorded) and Prandtl loss model, as in
         :func:`~bild_mdo.bem.blade_element.declare_section_options`.
     use_atmosphere : bool
-        True: ``rho``, ``mu`` come from the ISA at input ``altitude``;
-        False: ``rho`` and ``mu`` are inputs of the group.
+        True: ``rho``, ``mu`` and ``speed_of_sound`` come from the ISA at input ``altitude``;
+        False: ``rho``, ``mu`` and ``speed_of_sound`` are inputs of the group.
     radial_fractions, width_fractions : array_like or None
         Optional user stations (see :class:`~bild_mdo.bem.stations.StationsComp`).
     solve_range : {'physical', 'full'}
@@ -48,15 +48,20 @@ class BEMAnalysisGroup(om.Group):
         Rotational speed, tip radius, hub radius.
     chord[nn, nr] (m), twist[nn, nr] (rad)
         Blade geometry at the stations.
+    collective_pitch[nn] (rad)
+        Collective pitch added to the twist at every station (default 0).
     altitude[nn] (m)
-        Geometric altitude (with ``use_atmosphere``); else rho[nn] (kg/m**3), mu[nn] (Pa*s).
+        Geometric altitude (with ``use_atmosphere``); else rho[nn] (kg/m**3), mu[nn] (Pa*s)
+        and speed_of_sound[nn] (m/s, default sea-level ISA).
 
     Outputs
     -------
-    radii, dr, phi, flow_state (integer codes of :mod:`bild_mdo.bem.flow_states`; no derivatives)
+    radii, dr, phi, flow_state (integer codes of :mod:`bild_mdo.bem.flow_states`; no derivatives),
+    mach[nn, nr] (local Mach number ``W0 / a``, see :mod:`bild_mdo.bem.blade_element`)
     and the station outputs of
     :class:`~bild_mdo.bem.loads.BladeElementLoadsComp` (nn, nr); the per-design
-    outputs of :class:`~bild_mdo.bem.performance.RotorPerformanceComp` (nn,);
+    outputs of :class:`~bild_mdo.bem.performance.RotorPerformanceComp` (nn,), among them
+    ``tip_mach = sqrt(V_x^2 + (Omega R)^2) / a``;
     rho, mu, speed_of_sound (nn,) with ``use_atmosphere``.
     """
 
@@ -96,7 +101,7 @@ class BEMAnalysisGroup(om.Group):
         self.add_subsystem("performance",
                            RotorPerformanceComp(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"]),
                            promotes_inputs=["dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm",
-                                            "radius", "rho"],
+                                            "radius", "rho", "speed_of_sound"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
 
         self.set_input_defaults("v_axial", val=np.zeros(nn), units="m/s")
@@ -105,8 +110,10 @@ class BEMAnalysisGroup(om.Group):
         self.set_input_defaults("hub_radius", val=np.full(nn, 0.1), units="m")
         self.set_input_defaults("chord", val=np.full((nn, nr), 0.1), units="m")
         self.set_input_defaults("twist", val=np.full((nn, nr), 0.3), units="rad")
+        self.set_input_defaults("collective_pitch", val=np.zeros(nn), units="rad")
         if opts["use_atmosphere"]:
             self.set_input_defaults("altitude", val=np.zeros(nn), units="m")
         else:
             self.set_input_defaults("rho", val=np.full(nn, 1.225), units="kg/m**3")
             self.set_input_defaults("mu", val=np.full(nn, 1.789e-5), units="Pa*s")
+            self.set_input_defaults("speed_of_sound", val=np.full(nn, SEA_LEVEL_SPEED_OF_SOUND), units="m/s")

@@ -17,9 +17,21 @@ Loads (blade element, Eqs. 5-7): ``W^2 = u_axial^2 + (V_theta - u_theta/2)^2``,
 ``dT/dr = 1/2 rho W^2 B c C_x`` and ``dQ/dr = 1/2 rho W^2 B c C_theta r``
 (the printed Eq. (6) omits the moment arm ``r``).
 
+Mach number: the polar is evaluated at ``W0 / a``, from the same speed without induction as
+``Re`` (CCBlade.jl does the same for both).  The induced ``W`` depends on ``C_l, C_d`` at the root
+(Eq. 8), so a polar Mach number from ``W`` would make the polar depend on itself and the solve
+two-dimensional; with ``W0`` the residual stays a function of ``phi`` alone.  The reported local
+Mach number (output ``mach``) is ``W / a`` with the induced inflow speed, the same definition as
+BILD's.  The polar receives ``mach`` only where
+``polar.varies_with_mach`` and ``radial_fraction = r/R`` only where ``polar.varies_along_span``,
+so a uniform, Mach-independent polar is evaluated exactly as before.
+
+Collective pitch: the blade pitch is ``twist + collective_pitch`` at every station, so
+``alpha = twist + collective_pitch - phi``.
+
 Every quantity is carried with a dict of partials with respect to the
 component inputs ``phi, v_axial, rpm, radii, chord, twist, rho, mu, radius,
-hub_radius`` (arrays broadcast to the station shape).
+hub_radius, speed_of_sound, collective_pitch`` (arrays broadcast to the station shape).
 
 BEM (:class:`~bild_mdo.bem.inflow.InflowComp`,
 :class:`~bild_mdo.bem.loads.BladeElementLoadsComp`) and BILD's reference
@@ -37,10 +49,17 @@ from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandt
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
 
+#: Per-node inputs of the BEM blade element only (BILD has no collective pitch, and reads no
+#: speed of sound at its stations): name -> (default, units, description).
+BEM_NODE_INPUTS = {
+    "speed_of_sound": (340.294, "m/s", "speed of sound a (local Mach number W0 / a)"),
+    "collective_pitch": (0.0, "rad", "collective pitch, added to the twist at every station"),
+}
 #: Inputs of the BEM blade element, in declaration order.
-SECTION_INPUTS = ("v_axial", "rpm", "radius", "hub_radius", "radii", "chord", "twist", "rho", "mu")
+SECTION_INPUTS = ("v_axial", "rpm", "radius", "hub_radius", "radii", "chord", "twist", "rho", "mu",
+                  *BEM_NODE_INPUTS)
 #: Per-node inputs (shape (nn,)) of the section components; the others are per station (nn, nr).
-NODE_INPUTS = tuple(name for name in SECTION_INPUTS if VARIABLES[name][0] == "node")
+NODE_INPUTS = tuple(name for name in SECTION_INPUTS if name in BEM_NODE_INPUTS or VARIABLES[name][0] == "node")
 
 
 def _real(x):
@@ -61,19 +80,37 @@ def reynolds_number(v_axial, v_theta, chord, rho, mu):
     return rho * np.sqrt(v_axial**2 + v_theta**2) * chord / mu
 
 
+def polar_arguments(polar, w0, speed_of_sound, radii, radius):
+    """``(mach, radial_fraction)`` for ``polar.evaluate``: ``W0 / a`` and ``r / R`` where the polar needs them.
+
+    Each is None where the polar does not vary with it, so such a polar is evaluated as before.
+    """
+    mach = w0 / speed_of_sound if polar.varies_with_mach else None
+    fraction = radii / radius if polar.varies_along_span else None
+    return mach, fraction
+
+
+def _at(value, idx):
+    return None if value is None else value[idx]
+
+
 def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
-                      num_blades, polar, loss_model):
+                      num_blades, polar, loss_model, speed_of_sound=BEM_NODE_INPUTS["speed_of_sound"][0],
+                      collective_pitch=0.0):
     """A real ``residual(phi, idx) -> (R, dR/dphi)`` over flat station indices for the solver.
 
     All inputs are real arrays already broadcast to the flat station shape.
-    ``dR/dphi`` is the total derivative along phi (through alpha and F).
+    ``dR/dphi`` is the total derivative along phi (through alpha and F; ``M`` and ``r/R`` do not
+    depend on phi).
     """
     v_theta = rpm * RPM_TO_RAD_PER_S * radii
     sigma = num_blades * chord / (2.0 * np.pi * radii)
     reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
+    pitch = twist + collective_pitch
+    mach, fraction = polar_arguments(polar, np.sqrt(v_axial**2 + v_theta**2), speed_of_sound, radii, radius)
 
     def residual(phi, idx):
-        pv = polar.evaluate(twist[idx] - phi, reynolds[idx])
+        pv = polar.evaluate(pitch[idx] - phi, reynolds[idx], mach=_at(mach, idx), radial_fraction=_at(fraction, idx))
         F, dF_dphi = prandtl_loss_and_dphi(phi, radii[idx], radius[idx], hub_radius[idx], num_blades,
                                            loss_model)
         # Eq. (9) with F and its total phi derivative (through alpha = twist - phi and F);
@@ -97,7 +134,8 @@ def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_ra
 
 
 def denominator_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
-                         num_blades, polar, loss_model):
+                         num_blades, polar, loss_model, speed_of_sound=BEM_NODE_INPUTS["speed_of_sound"][0],
+                         collective_pitch=0.0):
     """A real ``admissible(phi, idx) -> bool`` over flat station indices: ``D > 0`` of Eq. (8), i.e. ``W > 0``.
 
     Arguments as in :func:`residual_function`.
@@ -105,9 +143,11 @@ def denominator_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub
     v_theta = rpm * RPM_TO_RAD_PER_S * radii
     sigma = num_blades * chord / (2.0 * np.pi * radii)
     reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
+    pitch = twist + collective_pitch
+    mach, fraction = polar_arguments(polar, np.sqrt(v_axial**2 + v_theta**2), speed_of_sound, radii, radius)
 
     def admissible(phi, idx):
-        pv = polar.evaluate(twist[idx] - phi, reynolds[idx])
+        pv = polar.evaluate(pitch[idx] - phi, reynolds[idx], mach=_at(mach, idx), radial_fraction=_at(fraction, idx))
         F = prandtl_loss(phi, radii[idx], radius[idx], hub_radius[idx], num_blades, loss_model).F
         _, c_theta = force_coefficients(phi, pv.cl, pv.cd)
         return 4.0 * F * (sign_of_sine(phi) * np.sin(phi)) * np.cos(phi) + sigma[idx] * c_theta > 0.0
@@ -135,7 +175,8 @@ def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope
 
 
 def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
-                     num_blades, polar, loss_model, loads=True, partials=True, unloaded=None):
+                     num_blades, polar, loss_model, loads=True, partials=True, unloaded=None,
+                     speed_of_sound=BEM_NODE_INPUTS["speed_of_sound"][0], collective_pitch=0.0):
     """Residual, aerodynamics and (optionally) loads at every station, with partials.
 
     Parameters
@@ -155,11 +196,13 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         Stations without a momentum solution (:data:`~bild_mdo.bem.flow_states.NO_SOLUTION`):
         there the loads take CCBlade's "zero loading" values ``u_axial = V_x``,
         ``u_theta = 0``, ``W = W0``, ``dT/dr = dQ/dr = 0`` (with their exact partials).
+    speed_of_sound, collective_pitch : ndarray or float
+        Per-node speed of sound (m/s) and collective pitch (rad), broadcastable like ``rpm``.
 
     Returns
     -------
     values : dict
-        'residual', 'alpha', 'reynolds', 'lift_coefficient', 'drag_coefficient', 'loss_factor'
+        'residual', 'alpha', 'reynolds', 'mach', 'lift_coefficient', 'drag_coefficient', 'loss_factor'
         and, with ``loads``,
         'u_axial', 'u_theta', 'inflow_speed', 'dthrust_dr', 'dtorque_dr' and the
         'denominator' ``D`` of Eq. (8) (``D > 0`` <=> ``W > 0``; no partials).
@@ -171,13 +214,15 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
     omega = rpm * RPM_TO_RAD_PER_S
     v_theta = omega * radii
     sigma = num_blades * chord / (2.0 * np.pi * radii)
-    alpha = twist - phi
+    alpha = (twist + collective_pitch) - phi
     w0 = np.sqrt(v_axial**2 + v_theta**2)
     reynolds = rho * w0 * chord / mu
-    pv = polar.evaluate(alpha, reynolds)
+    mach_arg, fraction = polar_arguments(polar, w0, speed_of_sound, radii, radius)
+    pv = polar.evaluate(alpha, reynolds, mach=mach_arg, radial_fraction=fraction)
     loss = prandtl_loss(phi, radii, radius, hub_radius, num_blades, loss_model)
+    mach = w0 / speed_of_sound
     values = {"residual": inflow_residual_value(phi, v_axial, v_theta, sigma, pv.cl, pv.cd, loss.F),
-              "alpha": alpha * ones, "reynolds": reynolds * ones, "lift_coefficient": pv.cl,
+              "alpha": alpha * ones, "reynolds": reynolds * ones, "mach": mach * ones, "lift_coefficient": pv.cl,
               "drag_coefficient": pv.cd,
               "loss_factor": loss.F * ones}
     if loads:
@@ -197,10 +242,14 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
             for name, value in (("u_axial", v_axial * ones), ("u_theta", zero), ("inflow_speed", w0 * ones),
                                 ("dthrust_dr", zero), ("dtorque_dr", zero)):
                 values[name] = np.where(unloaded, value, values[name])
+        # The reported local Mach number uses the inflow speed with induction, W / a (as BILD's); the polar
+        # above is evaluated at W0 / a, the speed of the Reynolds number, so the solve stays one-dimensional.
+        values["mach"] = values["inflow_speed"] / speed_of_sound * ones
     if not partials:
         return values, {}
     d = _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0,
-                          reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones)
+                          reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones,
+                          mach, speed_of_sound, fraction, radius)
     if loads and unloaded is not None and np.any(unloaded):
         d_w0 = _lin((_real(v_axial / w0), {"v_axial": ones}),
                     (_real(v_theta / w0), {"rpm": RPM_TO_RAD_PER_S * _real(radii) * ones,
@@ -209,14 +258,18 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
                             ("dthrust_dr", {}), ("dtorque_dr", {})):
             d[name] = {key: np.where(unloaded, fixed.get(key, 0.0), d[name].get(key, 0.0))
                        for key in set(d[name]) | set(fixed)}
+    if loads:
+        a = _real(speed_of_sound)
+        d["mach"] = _lin((1.0 / a * ones, d["inflow_speed"]), (-_real(values["mach"]) / a, {"speed_of_sound": ones}))
     return values, d
 
 
 def _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu,
-                      pv, loss, num_blades, loss_model, loads, ones):
+                      pv, loss, num_blades, loss_model, loads, ones, mach, speed_of_sound, fraction, radius):
     """Forward-mode partials of every section quantity with respect to the component inputs."""
-    phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu = map(
-        _real, (phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu))
+    phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound, radius = map(
+        _real, (phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound,
+                radius))
     cl, cd = _real(pv.cl), _real(pv.cd)
     F = _real(loss.F)
     res = inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F)
@@ -225,17 +278,26 @@ def _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0, rey
     d_vx = {"v_axial": ones}
     d_vtheta = {"rpm": RPM_TO_RAD_PER_S * radii * ones, "radii": omega * ones}
     d_sigma = {"chord": sigma / chord * ones, "radii": -sigma / radii * ones}
-    d_alpha = {"twist": ones, "phi": -ones}
+    d_alpha = {"twist": ones, "collective_pitch": ones, "phi": -ones}
     d_w0 = _lin((v_axial / w0, d_vx), (v_theta / w0, d_vtheta))
     d_re = _lin((reynolds / w0, d_w0), (reynolds / chord, {"chord": ones}),
                 (reynolds / rho, {"rho": ones}), (-reynolds / mu, {"mu": ones}))
-    d_cl = _lin((pv.dcl_dalpha, d_alpha), (pv.dcl_dre, d_re))
-    d_cd = _lin((pv.dcd_dalpha, d_alpha), (pv.dcd_dre, d_re))
+    d_mach = _lin((1.0 / speed_of_sound, d_w0), (-mach / speed_of_sound, {"speed_of_sound": ones}))
+    cl_terms, cd_terms = [(pv.dcl_dalpha, d_alpha), (pv.dcl_dre, d_re)], [(pv.dcd_dalpha, d_alpha), (pv.dcd_dre, d_re)]
+    if hasattr(pv, "dcl_dmach"):
+        cl_terms.append((pv.dcl_dmach, d_mach))
+        cd_terms.append((pv.dcd_dmach, d_mach))
+    if fraction is not None:
+        d_fraction = {"radii": ones / radius, "radius": -_real(fraction) / radius * ones}
+        cl_terms.append((pv.dcl_dradial_fraction, d_fraction))
+        cd_terms.append((pv.dcd_dradial_fraction, d_fraction))
+    d_cl = _lin(*cl_terms)
+    d_cd = _lin(*cd_terms)
     d_F = loss_partials(loss, loss_model)
     d_res = _lin((res.dR_dphi, d_phi), (res.dR_dv_axial, d_vx), (res.dR_dv_theta, d_vtheta),
                  (res.dR_dsigma, d_sigma), (res.dR_dcl, d_cl), (res.dR_dcd, d_cd),
                  (res.dR_dF, d_F))
-    partials = {"residual": d_res, "alpha": d_alpha, "reynolds": d_re, "lift_coefficient": d_cl,
+    partials = {"residual": d_res, "alpha": d_alpha, "reynolds": d_re, "mach": d_mach, "lift_coefficient": d_cl,
                 "drag_coefficient": d_cd, "loss_factor": d_F}
     if not loads:
         return partials
@@ -304,12 +366,28 @@ def add_section_inputs(comp, names=SECTION_INPUTS, **values):
     """
     if "radii" in names and "radii" not in values:
         values["radii"] = np.linspace(0.2, 0.95, comp.options["num_radial"])
-    add_inputs(comp, names, **values)
+    add_inputs(comp, [name for name in names if name not in BEM_NODE_INPUTS], **values)
+    nn = comp.options["num_nodes"]
+    for name in names:
+        if name in BEM_NODE_INPUTS:
+            default, units, desc = BEM_NODE_INPUTS[name]
+            comp.add_input(name, val=np.full(nn, values.get(name, default)), units=units, desc=desc)
 
 
-def section_input_names(loss_model):
-    """Inputs the section quantities depend on (radius / hub radius only through the loss factor)."""
-    return ["v_axial", "rpm", "radii", "chord", "twist", "rho", "mu"] + list(loss_inputs(loss_model))
+def section_input_names(loss_model, polar):
+    """Inputs the residual and the polar depend on.
+
+    ``radius`` and ``hub_radius`` enter through the loss factor, ``radius`` also through ``r/R``
+    of a polar that varies along the span; ``speed_of_sound`` only through the Mach number of a
+    polar that varies with it.
+    """
+    names = ["v_axial", "rpm", "radii", "chord", "twist", "collective_pitch", "rho", "mu"]
+    names += list(loss_inputs(loss_model))
+    if polar.varies_with_mach:
+        names.append("speed_of_sound")
+    if polar.varies_along_span and "radius" not in names:
+        names.append("radius")
+    return names
 
 
 def section_arguments(inputs, options):

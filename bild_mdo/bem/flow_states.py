@@ -117,11 +117,12 @@ def classify(c_x, c_theta, v_axial, u_axial, admissible):
     """
     c_x, c_theta, v_axial, u_axial = np.broadcast_arrays(*(np.real(x) for x in (c_x, c_theta, v_axial, u_axial)))
     forward = v_axial > 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        induction = np.where(forward, 1.0 - u_axial / np.where(forward, v_axial, 1.0), 0.0)
+    # a = 1 - u_axial / V_x > a_c  <=>  u_axial < (1 - a_c) V_x at V_x > 0: no division, so a tiny V_x
+    # cannot overflow.
+    past_critical = u_axial < (1.0 - CRITICAL_INDUCTION) * v_axial
     thrust, torque = c_x > 0.0, c_theta > 0.0
     # Forward flight past a = 0.4, or a hover annulus pushing air upward (vortex ring).
-    wake = (forward & ~thrust & (induction > CRITICAL_INDUCTION)) | (~forward & (c_x < 0.0) & (u_axial < 0.0))
+    wake = (forward & ~thrust & past_critical) | (~forward & (c_x < 0.0) & (u_axial < 0.0))
     state = np.full(c_x.shape, NO_SOLUTION, dtype=int)
     state[thrust & torque] = PROPELLER
     state[~thrust & torque & ~wake] = PROPELLER_BRAKE

@@ -44,8 +44,10 @@ class InflowComp(om.ImplicitComponent):
     Inputs
     ------
     v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), hub_radius[nn] (m), rho[nn] (kg/m**3), mu[nn] (Pa*s),
-    radii[nn, nr] (m), chord[nn, nr] (m), twist[nn, nr] (rad)
-        The blade-element inputs (:data:`~bild_mdo.bem.blade_element.SECTION_INPUTS`).
+    speed_of_sound[nn] (m/s), collective_pitch[nn] (rad), radii[nn, nr] (m), chord[nn, nr] (m), twist[nn, nr] (rad)
+        The blade-element inputs (:data:`~bild_mdo.bem.blade_element.SECTION_INPUTS`); the polar sees
+        ``alpha = twist + collective_pitch - phi``, the Mach number ``W0 / a`` where it varies with
+        Mach number and ``r/R`` where it varies along the span.
 
     Outputs
     -------
@@ -76,7 +78,7 @@ class InflowComp(om.ImplicitComponent):
         self.declare_partials("phi", "phi", rows=rows_s, cols=cols_s)
         # The flow state is a label fixed by the solve: its residual is flow_state - label.
         self.declare_partials("flow_state", "flow_state", rows=rows_s, cols=cols_s, val=1.0)
-        for name in section_input_names(self.options["loss_model"]):
+        for name in section_input_names(self.options["loss_model"], self.options["polar"]):
             if name in NODE_INPUTS:
                 self.declare_partials("phi", name, rows=rows_n, cols=cols_n)
             else:
@@ -117,7 +119,7 @@ class InflowComp(om.ImplicitComponent):
     def _check_domain(self, inputs):
         """The momentum model needs V_x >= 0, rpm > 0 and positive geometry (else AnalysisError)."""
         for name, allow_zero in (("v_axial", True), ("rpm", False), ("chord", False), ("radii", False),
-                                 ("rho", False), ("mu", False)):
+                                 ("rho", False), ("mu", False), ("speed_of_sound", False)):
             value = np.real(inputs[name])
             bad = (value < 0.0) if allow_zero else (value <= 0.0)
             if np.any(bad | ~np.isfinite(value)):
@@ -139,8 +141,8 @@ class InflowComp(om.ImplicitComponent):
         kernels.update(num_blades=self.options["num_blades"], polar=self.options["polar"],
                        loss_model=self.options["loss_model"])
         residual = residual_function(**kernels)
-        guess = inflow_angle_guess(flat("v_axial"), flat("rpm"), flat("radii"), flat("chord"), flat("twist"),
-                                   self.options["num_blades"])
+        guess = inflow_angle_guess(flat("v_axial"), flat("rpm"), flat("radii"), flat("chord"),
+                                   flat("twist") + flat("collective_pitch"), self.options["num_blades"])
         if self.options["solve_range"] == "physical":
             phi, found = solve_physical(residual, denominator_function(**kernels), flat("v_axial") > 0.0,
                                         describe=self._describe(inputs), initial_guess=guess)
@@ -183,8 +185,8 @@ class InflowComp(om.ImplicitComponent):
         d_res = d["residual"]
         unloaded = self._unloaded
         d_fallback = self._fallback_angle(inputs)[1] if np.any(unloaded) else {}
-        for name in ["phi"] + section_input_names(self.options["loss_model"]):
-            value = np.broadcast_to(d_res[name], shape)
+        for name in ["phi"] + section_input_names(self.options["loss_model"], self.options["polar"]):
+            value = np.broadcast_to(d_res.get(name, 0.0), shape)
             if np.any(unloaded):
                 value = np.where(unloaded, 1.0 if name == "phi" else -d_fallback.get(name, 0.0), value)
             jacobian["phi", name] = value.ravel()

@@ -35,6 +35,7 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+import openmdao.api as om
 
 
 def _real(x):
@@ -142,7 +143,32 @@ def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
     Returns
     -------
     InflowResidual
+
+    Raises
+    ------
+    openmdao.api.AnalysisError
+        Where the residual or a partial is not finite (inputs beyond the floating-point range).
     """
+    # Extreme inputs (V_x / V_theta beyond 1e300) overflow here; they are reported once below as an
+    # AnalysisError instead of NumPy warnings and silently infinite partials.
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        result = _inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F)
+    _require_finite(result, "inflow residual", v_axial, v_theta, sigma)
+    return result
+
+
+def _require_finite(result, what, v_axial, v_theta, sigma):
+    """Raise AnalysisError where a value or partial of ``result`` is not finite."""
+    if all(np.all(np.isfinite(np.real(x))) for x in result):
+        return
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        ratio = np.max(np.real(v_axial) / np.real(v_theta))
+    raise om.AnalysisError(f"BEM {what}: not finite (V_x / V_theta up to {ratio:.3g}, solidity up to "
+                           f"{np.max(np.real(sigma)):.3g}); the inputs are beyond the floating-point range "
+                           "of the momentum equations (check rpm, radii, chord and the number of blades)")
+
+
+def _inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
     value = _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
     phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
     s, c = np.sin(phi), np.cos(phi)
@@ -194,6 +220,13 @@ def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
         ``u_theta = 2 sigma C_theta V_theta / D`` with
         ``D = 4 F |sin(phi)| cos(phi) + sigma C_theta`` (``D > 0`` <=> ``W > 0``).
     """
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        result = _induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F)
+    _require_finite(result, "induced velocities", v_axial, v_theta, sigma)
+    return result
+
+
+def _induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
     _, _, _, _, P, N, M, D = _eq8_terms(phi, sigma, cl, cd, F)
     u_theta = 2.0 * v_theta * N / D
     u_axial = v_axial + v_theta * M / D

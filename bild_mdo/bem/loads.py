@@ -13,6 +13,7 @@ from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 SECTION_OUTPUTS = {
     "alpha": ("rad", "angle of attack alpha = twist - phi"),
     "reynolds": (None, "chord Reynolds number rho W0 c / mu, W0 = sqrt(V_x^2 + V_theta^2)"),
+    "mach": (None, "local Mach number W / a (inflow speed with induction; the polar sees W0 / a)"),
     "lift_coefficient": (None, "section lift coefficient C_l"),
     "drag_coefficient": (None, "section drag coefficient C_d"),
     "u_axial": ("m/s", "axial velocity at the disk u_axial (Eq. 8)"),
@@ -47,7 +48,8 @@ class BladeElementLoadsComp(om.ExplicitComponent):
 
     Outputs
     -------
-    alpha[nn, nr] (rad), reynolds[nn, nr], lift_coefficient[nn, nr], drag_coefficient[nn, nr], u_axial[nn, nr] (m/s),
+    alpha[nn, nr] (rad), reynolds[nn, nr], mach[nn, nr], lift_coefficient[nn, nr], drag_coefficient[nn, nr],
+    u_axial[nn, nr] (m/s),
     u_theta[nn, nr] (m/s), loss_factor[nn, nr], inflow_speed[nn, nr] (m/s),
     dthrust_dr[nn, nr] (N/m), dtorque_dr[nn, nr] (N*m/m)
     """
@@ -65,14 +67,17 @@ class BladeElementLoadsComp(om.ExplicitComponent):
             self.add_output(name, val=np.ones((nn, nr)), units=units, desc=desc)
 
     def _dependencies(self, output):
-        loss_model = self.options["loss_model"]
-        names = ["phi"] + section_input_names(loss_model)
+        loss_model, polar = self.options["loss_model"], self.options["polar"]
+        names = ["phi"] + section_input_names(loss_model, polar)
         if output == "alpha":
-            return ["phi", "twist"]
+            return ["phi", "twist", "collective_pitch"]
         if output == "reynolds":
             return ["v_axial", "rpm", "radii", "chord", "rho", "mu"]
+        if output == "mach":
+            # W / a: everything the inflow speed depends on, and the speed of sound.
+            return names + ([] if "speed_of_sound" in names else ["speed_of_sound"])
         if output in ("lift_coefficient", "drag_coefficient"):
-            return ["phi", "twist", "v_axial", "rpm", "radii", "chord", "rho", "mu"]
+            return [n for n in names if n not in ("hub_radius",) and (n != "radius" or polar.varies_along_span)]
         if output == "loss_factor":
             if loss_model == "none":
                 return []

@@ -53,6 +53,7 @@ METRICS = (
     Metric("energy_loss", "W", "rate of energy loss E = Omega Q - V_x T", "E [kW]", 1e-3, verified=True),
     Metric("solidity", None, "blade solidity sigma_r = B sum(c dr) / (pi R^2)", "sigma [-]"),
     Metric("blade_loading", None, "blade loading C_T / sigma_r", "C_T/sigma [-]"),
+    Metric("tip_mach", None, "tip Mach number sqrt(V_x^2 + (Omega R)^2) / a", "M_tip [-]"),
 )
 
 #: name -> Metric.

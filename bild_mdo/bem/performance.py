@@ -24,7 +24,10 @@ _DEPENDS = {
     "energy_loss": ("T", "Q", "v_axial", "rpm"),
     "solidity": ("S", "radius"),
     "blade_loading": ("T", "S", "rpm", "radius", "rho"),
+    "tip_mach": ("v_axial", "rpm", "radius", "speed_of_sound"),
 }
+#: Sea-level ISA speed of sound (m/s), the default of the ``speed_of_sound`` input.
+SEA_LEVEL_SPEED_OF_SOUND = 340.294
 
 
 def _abs(x):
@@ -50,7 +53,7 @@ def _check_power(Q, rpm):
             raise om.AnalysisError(f"rotor performance: {name} = {value!r} at node {node}: {rule}.")
 
 
-def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
+def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades, speed_of_sound=SEA_LEVEL_SPEED_OF_SOUND):
     """Performance metrics of Table 2 and their partials with respect to the primitives.
 
     Parameters
@@ -63,6 +66,8 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
         Axial speed (m/s), rotational speed (rpm), tip radius (m), density (kg/m^3).
     num_blades : int
         Number of blades B.
+    speed_of_sound : array_like
+        Speed of sound a (m/s), for the tip Mach number ``sqrt(V_x^2 + (Omega R)^2) / a``.
 
     Returns
     -------
@@ -70,7 +75,7 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
         Output name -> array.
     partials : dict
         Output name -> {primitive: array}; primitives are 'T', 'Q', 'S', 'v_axial',
-        'rpm', 'radius', 'rho'.
+        'rpm', 'radius', 'rho', 'speed_of_sound'.
 
     Raises
     ------
@@ -96,8 +101,13 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
     cp = P / (rho * n**3 * D**5)
     E = P - v_axial * T
     sol = num_blades * S / (np.pi * radius**2)
-    bl = ct / sol
-    values = {"thrust": T, "torque": Q, "power": P, "efficiency": eta, "figure_of_merit": fm,
+    # A blade without area (S = 0: every chord zero, e.g. an infeasible BILD design) carries no load.
+    has_area = np.real(sol) != 0.0
+    safe_sol = np.where(has_area, sol, 1.0)
+    bl = np.where(has_area, ct / safe_sol, 0.0)
+    tip_speed = np.sqrt(v_axial**2 + (omega * radius) ** 2)
+    tip_mach = tip_speed / speed_of_sound
+    values = {"tip_mach": tip_mach, "thrust": T, "torque": Q, "power": P, "efficiency": eta, "figure_of_merit": fm,
               "thrust_coefficient": ct, "torque_coefficient": cq, "power_coefficient": cp,
               "energy_loss": E, "solidity": sol, "blade_loading": bl}
 
@@ -119,8 +129,13 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades):
         "energy_loss": {"T": -v_axial * one, "Q": omega * one, "v_axial": -T,
                         "rpm": RPM_TO_RAD_PER_S * Q},
         "solidity": {"S": num_blades / (np.pi * radius**2) * one, "radius": -2.0 * sol / radius},
-        "blade_loading": {"T": 1.0 / (rho * n**2 * D**4 * sol), "S": -bl / S, "rpm": -2.0 * bl / rpm,
+        "blade_loading": {"T": np.where(has_area, 1.0 / (rho * n**2 * D**4 * safe_sol), 0.0),
+                          "S": np.where(has_area, -bl / np.where(has_area, S, 1.0), 0.0), "rpm": -2.0 * bl / rpm,
                           "radius": -2.0 * bl / radius, "rho": -bl / rho},
+        "tip_mach": {"v_axial": v_axial / (tip_speed * speed_of_sound),
+                     "rpm": omega * radius**2 * RPM_TO_RAD_PER_S / (tip_speed * speed_of_sound),
+                     "radius": omega**2 * radius / (tip_speed * speed_of_sound),
+                     "speed_of_sound": -tip_mach / speed_of_sound},
     }
     return values, partials
 
@@ -151,12 +166,14 @@ class RotorPerformanceComp(om.ExplicitComponent):
         Chord distribution (for the solidity).
     v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), rho[nn] (kg/m**3)
         Axial speed, rotational speed, tip radius, air density.
+    speed_of_sound[nn] (m/s)
+        Speed of sound a (default: sea-level ISA), for ``tip_mach``.
 
     Outputs
     -------
     thrust[nn] (N), torque[nn] (N*m), power[nn] (W), efficiency[nn], figure_of_merit[nn],
     thrust_coefficient[nn], torque_coefficient[nn], power_coefficient[nn], energy_loss[nn] (W),
-    solidity[nn], blade_loading[nn]
+    solidity[nn], blade_loading[nn], tip_mach[nn]
     """
 
     def initialize(self):
@@ -166,6 +183,8 @@ class RotorPerformanceComp(om.ExplicitComponent):
     def setup(self):
         nn = self.options["num_nodes"]
         add_inputs(self, ("dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm", "radius", "rho"))
+        self.add_input("speed_of_sound", val=np.full(nn, SEA_LEVEL_SPEED_OF_SOUND), units="m/s",
+                       desc="speed of sound a (tip Mach number)")
         for name, (units, desc) in PERFORMANCE_OUTPUTS.items():
             self.add_output(name, val=np.ones(nn), units=units, desc=desc)
 
@@ -175,7 +194,8 @@ class RotorPerformanceComp(om.ExplicitComponent):
         rows_n, cols_n = node_wrt_node(nn)
         dist_of = {"T": ("dthrust_dr",), "Q": ("dtorque_dr",), "S": ("chord",)}
         for out, prims in _DEPENDS.items():
-            wrt_dist = {"dr"} | {name for p in prims for name in dist_of.get(p, ())}
+            wrt_dist = {name for p in prims for name in dist_of.get(p, ())}
+            wrt_dist = wrt_dist | {"dr"} if wrt_dist else wrt_dist
             for name in sorted(wrt_dist):
                 self.declare_partials(out, name, rows=rows_d, cols=cols_d)
             for p in prims:
@@ -192,7 +212,7 @@ class RotorPerformanceComp(om.ExplicitComponent):
         T, Q, S = self._primitives(inputs)
         try:
             values, d = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
-                                          inputs["rho"], self.options["num_blades"])
+                                          inputs["rho"], self.options["num_blades"], inputs["speed_of_sound"])
         except om.AnalysisError as err:
             raise om.AnalysisError(f"{self.msginfo}: {err}") from err
         return values, d
@@ -209,11 +229,13 @@ class RotorPerformanceComp(om.ExplicitComponent):
         dprim_ddr = {"T": inputs["dthrust_dr"], "Q": inputs["dtorque_dr"], "S": inputs["chord"]}
         dist_of = {"T": "dthrust_dr", "Q": "dtorque_dr", "S": "chord"}
         for out, prims in _DEPENDS.items():
-            ddr = np.zeros_like(dr)
+            # Outputs of per-design inputs only (tip_mach) have no sum over the stations.
+            ddr = np.zeros_like(dr) if any(p in dist_of for p in prims) else None
             for p in prims:
                 if p in dist_of:
                     partials[out, dist_of[p]] = (d[out][p][:, None] * dr).ravel()
                     ddr = ddr + d[out][p][:, None] * dprim_ddr[p]
                 else:
                     partials[out, p] = d[out][p]
-            partials[out, "dr"] = ddr.ravel()
+            if ddr is not None:
+                partials[out, "dr"] = ddr.ravel()

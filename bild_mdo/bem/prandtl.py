@@ -168,13 +168,33 @@ def prandtl_loss(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
     )
 
 
+def _exponent(half_b, gap, base, abs_s):
+    """Prandtl exponent ``f = B gap / (2 base |sin phi|)``, capped at :data:`EXPONENT_MAX`.
+
+    Beyond the cap ``F = 1`` to round-off and ``dF/df = 0`` (:func:`_acos_factor` clips there anyway),
+    so the cap changes no value; it keeps a tiny base (a hub radius of 1e-300 m) from carrying an
+    overflowed exponent into the partials.
+    """
+    with np.errstate(over="ignore", divide="ignore"):
+        f = half_b * gap / (base * abs_s)
+    return np.where(_real(f) >= EXPONENT_MAX, EXPONENT_MAX, f)
+
+
+def _where_loaded(dF_df, numerator, denominator):
+    """``dF_df * numerator / denominator`` where ``dF/df != 0``, else 0 (no overflow where it would be discarded)."""
+    num, den, d = np.broadcast_arrays(numerator, denominator, dF_df)
+    ratio = np.divide(num, den, out=np.zeros(d.shape, dtype=np.result_type(num, den, float)), where=d != 0.0)
+    return d * ratio
+
+
 def _factor(phi, gap, base, num_blades):
     """Prandtl factor ``2/pi acos(exp(-f))``, ``f = B gap / (2 base |sin phi|)``, and its phi, gap, base partials."""
     abs_s, dabs_dphi = _abs_sin(phi)
     half_b = 0.5 * num_blades
-    f = half_b * gap / (base * abs_s)
+    f = _exponent(half_b, gap, base, abs_s)
     value, dF_df = _acos_factor(f)
-    return value, (dF_df * (-f / abs_s * dabs_dphi), dF_df * half_b / (base * abs_s), dF_df * (-f / base))
+    return value, (dF_df * (-f / abs_s * dabs_dphi), _where_loaded(dF_df, half_b, base * abs_s),
+                   _where_loaded(dF_df, -f, base))
 
 
 def _tip_factor(phi, r, radius, num_blades):
@@ -201,13 +221,13 @@ def prandtl_loss_and_dphi(phi, r, radius, hub_radius, num_blades, loss_model="ti
         return np.ones(shape), np.zeros(shape)
     abs_s, dabs_dphi = _abs_sin(phi)
     half_b = 0.5 * num_blades
-    f = half_b * (radius - r) / (r * abs_s)
+    f = _exponent(half_b, radius - r, r, abs_s)
     F, dF_df = _acos_factor(f)
     # df/dphi = -f/|sin| d|sin|/dphi for both exponents.
     dlog = -dabs_dphi / abs_s
     dF_dphi = dF_df * f * dlog
     if loss_model == "tip":
         return F, dF_dphi
-    g = half_b * (r - hub_radius) / (hub_radius * abs_s)
+    g = _exponent(half_b, r - hub_radius, hub_radius, abs_s)
     G, dG_dg = _acos_factor(g)
     return F * G, dF_dphi * G + F * dG_dg * g * dlog

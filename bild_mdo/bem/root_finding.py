@@ -100,7 +100,7 @@ def find_brackets(residual, size, describe=None, shape=None):
             r_half[todo] = rb
         _check_finite(ra, todo, a, describe)
         _check_finite(rb, todo, b, describe)
-        ok = ra * rb <= 0.0
+        ok = opposite_signs(ra, rb)
         idx = todo[ok]
         lo[idx], hi[idx], r_lo[idx], r_hi[idx] = a, b, ra[ok], rb[ok]
         todo = todo[~ok]
@@ -117,7 +117,7 @@ def _scan(residual, todo, lo, hi, r_lo, r_hi, describe):
     values = residual(grid.ravel(), stations)[0]
     _check_finite(values, stations, grid.ravel(), describe)
     values = values.reshape(n, _SCAN.size)
-    change = values[:, :-1] * values[:, 1:] <= 0.0
+    change = opposite_signs(values[:, :-1], values[:, 1:])
     found = change.any(axis=1)
     if not np.all(found):
         bad = todo[~found][0]
@@ -133,6 +133,11 @@ def _scan(residual, todo, lo, hi, r_lo, r_hi, describe):
     r_lo[todo] = values[rows, first]
     r_hi[todo] = values[rows, first + 1]
     return lo, hi, r_lo, r_hi
+
+
+def opposite_signs(a, b):
+    """``a b <= 0`` without forming the product (which overflows or underflows at extreme residuals)."""
+    return ((a <= 0.0) & (b >= 0.0)) | ((a >= 0.0) & (b <= 0.0))
 
 
 def _check_finite(values, idx, phi, describe):
@@ -215,7 +220,7 @@ def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TO
         rb = residual(np.full(idx.size, b), idx)[0]
         _check_finite(ra, idx, a, describe)
         _check_finite(rb, idx, b, describe)
-        ok = ra * rb <= 0.0
+        ok = opposite_signs(ra, rb)
         if np.any(ok):
             sel = idx[ok]
             x = _solve_in(residual, sel, np.full(sel.size, a), np.full(sel.size, b), ra[ok], rb[ok], guess,
@@ -248,7 +253,7 @@ def _scan_admissible(residual, admissible, phi, found, describe, tol, max_iter, 
     _check_finite(values, stations, x, describe)
     values = values.reshape(n, grid.size)
     ok_end = admissible(x, stations).reshape(n, grid.size) & allowed
-    change = (values[:, :-1] * values[:, 1:] <= 0.0) & ok_end[:, :-1] & ok_end[:, 1:]
+    change = opposite_signs(values[:, :-1], values[:, 1:]) & ok_end[:, :-1] & ok_end[:, 1:]
     change &= np.broadcast_to(np.diff(np.sign(grid)) == 0, change.shape)   # never across phi = 0
     has = change.any(axis=1)
     if not np.any(has):

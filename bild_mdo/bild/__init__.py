@@ -13,6 +13,7 @@ from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
+from bild_mdo.bild.mach import LocalMachComp
 from bild_mdo.bild.momentum_loads import MomentumLoadsComp
 from bild_mdo.bild.problem import bild_problem, clear_model_cache
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
@@ -20,6 +21,7 @@ from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityCom
 from bild_mdo.bild.reference_station import ReferenceStationComp
 from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
 from bild_mdo.bild.rotational_speed import RotationalSpeedComp
+from bild_mdo.bild.thrust_target import ReferenceChordSolver, ThrustTargetComp
 
 __all__ = [
     "AdvanceRatioComp",
@@ -32,11 +34,14 @@ __all__ = [
     "IdealLoadingComp",
     "InducedVelocityComp",
     "InflowAngleComp",
+    "LocalMachComp",
+    "ReferenceChordSolver",
     "ReferenceAirfoilComp",
     "ReferenceInducedVelocityComp",
     "ReferenceStationComp",
     "RootChordCorrectionComp",
     "RotationalSpeedComp",
+    "ThrustTargetComp",
     "MomentumLoadsComp",
     "bild_problem",
     "clear_model_cache",

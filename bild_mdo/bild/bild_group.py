@@ -18,12 +18,14 @@ from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
+from bild_mdo.bild.mach import LocalMachComp
 from bild_mdo.bild.momentum_loads import MomentumLoadsComp
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp, default_polar
 from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
 from bild_mdo.bild.reference_station import REFERENCE_INPUTS, ReferenceStationComp
 from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
 from bild_mdo.bild.rotational_speed import RotationalSpeedComp
+from bild_mdo.bild.thrust_target import ReferenceChordSolver, ThrustTargetComp
 from bild_mdo.utils.options import declare_size_options
 
 INPUT_MODES = ("v_axial", "advance_ratio")
@@ -49,12 +51,12 @@ class BILDGroup(om.Group):
     implicit components, the reference-station BEM solve and the quartic for
     ``eta2``, solve themselves and provide exact linear solves)::
 
-        atmosphere (ISA)            altitude -> rho, mu
+        atmosphere (ISA)            altitude -> rho, mu, a
         [advance_ratio]             J, rpm, R -> V_x            (input_mode='advance_ratio')
         geometry                    R, ratios -> r_hub, r_ref
         stations                    R, r_hub -> radii, dr       (midpoints of equal annuli)
         rotational_speed            V_theta = Omega r, Omega r_ref
-        reference_airfoil           Re_ref -> alpha*, C_l*, C_d*                       step 1
+        reference_airfoil           Re_ref, M_ref -> alpha*, C_l*, C_d*                step 1
         reference_station           BEM inflow angle at r_ref with c_ref (implicit)     step 2
         reference_induced_velocity  u_axial, u_theta at r_ref, Eq. (8)                  step 2
         ideal_loading               lambda, Eq. (22)                                    step 3
@@ -64,8 +66,19 @@ class BILDGroup(om.Group):
         momentum_loads              F, dT/dr, dQ/dr, dE/dr, Eqs. (1), (2), (12)         step 6
         chord                       Eq. (31) (or the torque form)                       step 7
         root_chord_correction       Eq. (32) (optional)
-        performance                 T, Q, P, eta, FM, C_T, C_Q, C_P, E, sigma_r, C_T/sigma_r (Table 2)
+        local_mach                  M = W / a at every station
+        performance                 T, Q, P, eta, FM, C_T, C_Q, C_P, E, sigma_r, C_T/sigma_r (Table 2), M_tip
         feasibility_check           feasible (1/0); one error for every infeasible node
+
+    Airfoils.  A polar with ``varies_with_mach`` is queried at the reference
+    station's Mach number ``M_ref = W0 / a`` (``W0`` as for ``Re_ref``); a
+    polar with ``varies_along_span``
+    (:class:`~bild_mdo.airfoil.spanwise.SpanwisePolar`) gives every station
+    its own maximum-L/D point at ``Re_ref`` and ``M_ref`` (Assumption 2 per
+    station): ``alpha_star, cl_star, cd_star`` are then ``[nn, nr]`` and the
+    reference station uses the airfoil at ``r_ref`` (``alpha_star_ref,
+    cl_star_ref, cd_star_ref``, ``[nn]``), so ``chord(r_ref) = c_ref`` still
+    holds.  Other polars give exactly the one-airfoil, Reynolds-only chain.
 
     The thrust and torque are those of the ideal loading; the root-chord
     correction changes only the chord (and with it the solidity), as in the
@@ -125,6 +138,13 @@ class BILDGroup(om.Group):
         User stations ``r/R`` and widths ``dr/R`` (shape ``(nr,)`` or
         ``(nn, nr)``), see :class:`~bild_mdo.bem.stations.StationsComp`;
         ``None`` (default): midpoints of ``nr`` equal annuli from hub to tip.
+    thrust_target : bool
+        False (default): ``ref_chord`` is an input.  True: ``thrust_target``
+        is, and ``ref_chord`` is the output that gives ``thrust =
+        thrust_target`` (to 1e-12 relative), solved per design by
+        :class:`~bild_mdo.bild.thrust_target.ReferenceChordSolver` with exact
+        totals (the group's linear solver is a DirectSolver); a target out of
+        reach is an infeasible design.
 
     Inputs
     ------
@@ -137,7 +157,9 @@ class BILDGroup(om.Group):
     hub_radius_ratio[nn] (-), ref_radius_ratio[nn] (-)
         Hub and reference radii over the tip radius, ``0 < hub < ref < 1``.
     ref_chord[nn] (m)
-        Chord at the reference station.
+        Chord at the reference station (an output with ``thrust_target=True``).
+    thrust_target[nn] (N)
+        Required thrust, > 0 (only with ``thrust_target=True``).
     altitude[nn] (m)
         Geometric altitude for the ISA atmosphere.
 
@@ -150,14 +172,18 @@ class BILDGroup(om.Group):
     phi, inflow_speed, u_axial, u_theta, eta2, loss_factor, dthrust_dr, dtorque_dr,
     denergy_loss_dr, lift_coefficient, drag_coefficient : [nn, nr]
         Distributions of the ideal rotor.
+    mach[nn, nr] (-)
+        Local Mach number ``W / a`` (``W`` the inflow speed with induction).
     thrust, torque, power, efficiency, figure_of_merit, thrust_coefficient,
-    torque_coefficient, power_coefficient, energy_loss, solidity, blade_loading : [nn]
-        Performance (Table 2).
+    torque_coefficient, power_coefficient, energy_loss, solidity, blade_loading, tip_mach : [nn]
+        Performance (Table 2) and the tip Mach number ``sqrt(V_x**2 + (Omega R)**2) / a``.
     feasible : [nn]
         1.0 where the design is feasible, 0.0 where it is not (``'flag'`` mode).
-    alpha_star, cl_star, cd_star, reynolds_ref, phi_ref, u_axial_ref, u_theta_ref,
-    ideal_loading_constant, v_axial (advance-ratio mode), rho, mu : [nn]
-        Intermediate per-design quantities.
+    alpha_star, cl_star, cd_star, reynolds_ref, mach_ref, phi_ref, u_axial_ref, u_theta_ref,
+    ideal_loading_constant, v_axial (advance-ratio mode), rho, mu, speed_of_sound : [nn]
+        Intermediate per-design quantities (``alpha_star, cl_star, cd_star``
+        ``[nn, nr]`` and ``alpha_star_ref, cl_star_ref, cd_star_ref`` ``[nn]``
+        for a polar that varies along the span).
     """
 
     def initialize(self):
@@ -180,6 +206,8 @@ class BILDGroup(om.Group):
                              desc="user station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
         self.options.declare("width_fractions", default=None, allow_none=True,
                              desc="user station widths dr/R (with radial_fractions)")
+        self.options.declare("thrust_target", types=bool, default=False,
+                             desc="True: input thrust_target (N) and the reference chord solved for it")
 
     def setup(self):
         opts = self.options
@@ -194,7 +222,7 @@ class BILDGroup(om.Group):
         checked = dict(feasibility=self.feasibility)
 
         self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
-                           promotes_outputs=["rho", "mu"])
+                           promotes_outputs=["rho", "mu", "speed_of_sound"])
         if opts["input_mode"] == "advance_ratio":
             self.add_subsystem("advance_ratio", AdvanceRatioComp(**node),
                                promotes_inputs=["advance_ratio", "rpm", "radius"], promotes_outputs=["v_axial"])
@@ -207,24 +235,34 @@ class BILDGroup(om.Group):
         self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
                            promotes_inputs=["rpm", "radii", "ref_radius"],
                            promotes_outputs=["v_theta", "v_theta_ref"])
-        self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**node, polar=polar),
-                           promotes_inputs=["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"],
-                           promotes_outputs=["reynolds_ref", "alpha_star", "cl_star", "cd_star"])
+        # A polar that varies along the span gives every station its own airfoil point (nn, nr); the
+        # reference station then reads its own point, promoted as cl_star_ref, cd_star_ref.
+        spanwise = bool(polar.varies_along_span)
+        point = ["alpha_star", "cl_star", "cd_star"]
+        airfoil_in = ["v_axial", "v_theta_ref", "ref_chord", "rho", "mu", "speed_of_sound"]
+        if spanwise:
+            airfoil_in += ["radii", "radius", "ref_radius_ratio"]
+            point += [f"{name}_ref" for name in point]
+        self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**size, polar=polar),
+                           promotes_inputs=airfoil_in, promotes_outputs=["reynolds_ref", "mach_ref"] + point)
+        reference_in = [(name, f"{name}_ref") if spanwise and name in ("cl_star", "cd_star") else name
+                        for name in REFERENCE_INPUTS]
         self.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
-                           promotes_inputs=list(REFERENCE_INPUTS), promotes_outputs=["phi_ref"])
+                           promotes_inputs=reference_in, promotes_outputs=["phi_ref"])
         self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
-                           promotes_inputs=["phi_ref"] + list(REFERENCE_INPUTS),
+                           promotes_inputs=["phi_ref"] + reference_in,
                            promotes_outputs=["u_axial_ref", "u_theta_ref"])
         self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
                            promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
                            promotes_outputs=["ideal_loading_constant"])
-        self.add_subsystem("eta2", Eta2Comp(**size, **checked),
+        along = dict(varies_along_span=spanwise)
+        self.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
                            promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
                            promotes_outputs=["eta2"])
-        self.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked),
+        self.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
                            promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
                            promotes_outputs=["u_axial", "u_theta"])
-        self.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked),
+        self.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
                            promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
                            promotes_outputs=["phi", "inflow_speed", "twist"])
         self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
@@ -232,19 +270,29 @@ class BILDGroup(om.Group):
                                             "hub_radius"],
                            promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
         chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
-        self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked),
+        self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
+                                              **along),
                            promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
                            promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
         self.add_subsystem("root_chord_correction",
                            RootChordCorrectionComp(**size, correction_constant=opts["root_chord_correction"]),
                            promotes_inputs=["chord_raw", "ref_chord", "radii", "radius"],
                            promotes_outputs=["chord"])
+        self.add_subsystem("local_mach", LocalMachComp(**size), promotes_inputs=["inflow_speed", "speed_of_sound"],
+                           promotes_outputs=["mach"])
         self.add_subsystem("performance", RotorPerformanceComp(**size, num_blades=b),
                            promotes_inputs=["dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm",
-                                            "radius", "rho"],
+                                            "radius", "rho", "speed_of_sound"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
+        if opts["thrust_target"]:
+            #: The balance of the thrust-target solve (read by ReferenceChordSolver).
+            self.thrust_target_balance = self.add_subsystem(
+                "thrust_target_balance", ThrustTargetComp(**node, **checked),
+                promotes_inputs=["thrust", "thrust_target"], promotes_outputs=["ref_chord"])
+            self.nonlinear_solver = ReferenceChordSolver()
+            self.linear_solver = om.DirectSolver(assemble_jac=True)
         self.add_subsystem("feasibility_check", FeasibilityComp(**node, ledger=self.feasibility,
-                                                          on_infeasible=opts["on_infeasible"]),
+                                                                on_infeasible=opts["on_infeasible"]),
                            promotes_outputs=["feasible"])
 
         if opts["input_mode"] == "advance_ratio":
@@ -255,5 +303,8 @@ class BILDGroup(om.Group):
         self.set_input_defaults("radius", val=np.full(nn, 1.5), units="m")
         self.set_input_defaults("hub_radius_ratio", val=np.full(nn, 0.2), units=None)
         self.set_input_defaults("ref_radius_ratio", val=np.full(nn, 0.5), units=None)
-        self.set_input_defaults("ref_chord", val=np.full(nn, 0.15), units="m")
+        if opts["thrust_target"]:
+            self.set_input_defaults("thrust_target", val=np.full(nn, 1000.0), units="N")
+        else:
+            self.set_input_defaults("ref_chord", val=np.full(nn, 0.15), units="m")
         self.set_input_defaults("altitude", val=np.zeros(nn), units="m")

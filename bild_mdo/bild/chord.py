@@ -2,6 +2,12 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.airfoil_point import (
+    add_airfoil_point_inputs,
+    airfoil_point_pattern,
+    declare_spanwise_option,
+    per_station,
+)
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -42,6 +48,8 @@ class ChordComp(om.ExplicitComponent):
         ``'thrust'`` (Eq. (31), default) or ``'torque'``.
     feasibility : FeasibilityLedger or None
         See :func:`~bild_mdo.bild.feasibility.declare_feasibility_option`.
+    varies_along_span : bool
+        ``cl_star``, ``cd_star`` per station (:mod:`~bild_mdo.bild.airfoil_point`).
 
     Inputs
     ------
@@ -58,7 +66,8 @@ class ChordComp(om.ExplicitComponent):
     rho[nn] (kg/m**3)
         Air density.
     cl_star[nn] (-), cd_star[nn] (-)
-        Lift and drag coefficients at the maximum lift-to-drag ratio.
+        Lift and drag coefficients at the maximum lift-to-drag ratio
+        (``[nn, nr]`` with ``varies_along_span=True``).
 
     Outputs
     -------
@@ -71,6 +80,7 @@ class ChordComp(om.ExplicitComponent):
     def initialize(self):
         declare_size_options(self.options)
         declare_feasibility_option(self.options)
+        declare_spanwise_option(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("chord_form", default="thrust", values=CHORD_FORMS,
                              desc="'thrust': Eq. (31) from dT/dr; 'torque': Eq. (6) from dQ/dr")
@@ -80,7 +90,8 @@ class ChordComp(om.ExplicitComponent):
             add_inputs(self, ("dthrust_dr",))
         else:
             add_inputs(self, ("dtorque_dr", "radii"))
-        add_inputs(self, ("phi", "inflow_speed", "rho", "cl_star", "cd_star"))
+        add_inputs(self, ("phi", "inflow_speed", "rho"))
+        add_airfoil_point_inputs(self, ("cl_star", "cd_star"))
         add_outputs(self, ("chord_raw", "lift_coefficient", "drag_coefficient"))
 
     def setup_partials(self):
@@ -92,7 +103,9 @@ class ChordComp(om.ExplicitComponent):
             wrt.append("radii")
         self.declare_partials("chord_raw", wrt, rows=rows, cols=cols)
         rows, cols = dist_wrt_node(nn, nr)
-        self.declare_partials("chord_raw", ["rho", "cl_star", "cd_star"], rows=rows, cols=cols)
+        self.declare_partials("chord_raw", ["rho"], rows=rows, cols=cols)
+        rows, cols = airfoil_point_pattern(self)
+        self.declare_partials("chord_raw", ["cl_star", "cd_star"], rows=rows, cols=cols)
         self.declare_partials("lift_coefficient", "cl_star", rows=rows, cols=cols, val=1.0)
         self.declare_partials("drag_coefficient", "cd_star", rows=rows, cols=cols, val=1.0)
 
@@ -100,8 +113,8 @@ class ChordComp(om.ExplicitComponent):
         """Return load, force coefficient, its phi derivative, its cl and cd derivatives, denominator."""
         b = self.options["num_blades"]
         phi = inputs["phi"]
-        cl = inputs["cl_star"][:, None]
-        cd = inputs["cd_star"][:, None]
+        cl = per_station(inputs["cl_star"])
+        cd = per_station(inputs["cd_star"])
         sin, cos = np.sin(phi), np.cos(phi)
         scale = inputs["rho"][:, None] * inputs["inflow_speed"] ** 2 * b
         if self.options["chord_form"] == "thrust":
@@ -133,11 +146,10 @@ class ChordComp(om.ExplicitComponent):
         return load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale
 
     def compute(self, inputs, outputs):
-        nr = self.options["num_radial"]
         load, coef, _, _, _, scale = self._parts(inputs)
         outputs["chord_raw"] = 2.0 * load / (coef * scale)
-        outputs["lift_coefficient"] = np.repeat(inputs["cl_star"][:, None], nr, axis=1)
-        outputs["drag_coefficient"] = np.repeat(inputs["cd_star"][:, None], nr, axis=1)
+        outputs["lift_coefficient"] = np.broadcast_to(per_station(inputs["cl_star"]), load.shape)
+        outputs["drag_coefficient"] = np.broadcast_to(per_station(inputs["cd_star"]), load.shape)
 
     def compute_partials(self, inputs, partials):
         load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale = self._parts(inputs)

@@ -2,6 +2,12 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.airfoil_point import (
+    add_airfoil_point_inputs,
+    airfoil_point_pattern,
+    declare_spanwise_option,
+    per_station,
+)
 from bild_mdo.bild.quartic import (
     physical_factor_term_partials,
     physical_factor_terms,
@@ -231,7 +237,9 @@ class Eta2Comp(om.ImplicitComponent):
     ideal_loading_constant[nn] (m/s)
         Ideal-loading constant lambda of Eq. (22), > 0.
     cl_star[nn] (-), cd_star[nn] (-)
-        Lift and drag coefficients at the maximum lift-to-drag ratio, > 0.
+        Lift and drag coefficients at the maximum lift-to-drag ratio, > 0;
+        ``[nn, nr]`` with ``varies_along_span=True``
+        (:mod:`~bild_mdo.bild.airfoil_point`).
 
     Outputs
     -------
@@ -242,9 +250,11 @@ class Eta2Comp(om.ImplicitComponent):
     def initialize(self):
         declare_size_options(self.options)
         declare_feasibility_option(self.options)
+        declare_spanwise_option(self.options)
 
     def setup(self):
-        add_inputs(self, ("v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"))
+        add_inputs(self, ("v_axial", "v_theta", "ideal_loading_constant"))
+        add_airfoil_point_inputs(self, ("cl_star", "cd_star"))
         add_outputs(self, ("eta2",))
 
     def setup_partials(self):
@@ -252,15 +262,16 @@ class Eta2Comp(om.ImplicitComponent):
         rows, cols = dist_wrt_dist(nn, nr)
         self.declare_partials("eta2", ["eta2", "v_theta"], rows=rows, cols=cols)
         rows, cols = dist_wrt_node(nn, nr)
-        self.declare_partials("eta2", ["v_axial", "ideal_loading_constant", "cl_star", "cd_star"],
-                              rows=rows, cols=cols)
+        self.declare_partials("eta2", ["v_axial", "ideal_loading_constant"], rows=rows, cols=cols)
+        rows, cols = airfoil_point_pattern(self)
+        self.declare_partials("eta2", ["cl_star", "cd_star"], rows=rows, cols=cols)
 
     @staticmethod
     def _arguments(inputs):
         """``(V_x, V_theta, lam, s)`` broadcast to ``(nn, nr)``-compatible shapes."""
         v_x = inputs["v_axial"][:, None]
         lam = inputs["ideal_loading_constant"][:, None]
-        s = (inputs["cd_star"] / inputs["cl_star"])[:, None]
+        s = per_station(inputs["cd_star"] / inputs["cl_star"])
         return v_x, inputs["v_theta"], lam, s
 
     @staticmethod
@@ -275,7 +286,7 @@ class Eta2Comp(om.ImplicitComponent):
         real = {name: np.real(inputs[name]) for name in
                 ("v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star")}
         args = (real["v_axial"][:, None], real["v_theta"], real["ideal_loading_constant"][:, None],
-                real["cl_star"][:, None], real["cd_star"][:, None])
+                per_station(real["cl_star"]), per_station(real["cd_star"]))
         if self.options["feasibility"] is None:
             try:
                 eta = solve_eta2(*args, index_names=("node", "station"))
@@ -306,7 +317,7 @@ class Eta2Comp(om.ImplicitComponent):
         d_vt = (dp["v_theta"] - residual * 4.0 * root_scale * v_t) / scale
         d_lam = (dp["lam"] - residual * 4.0 * root_scale * lam) / scale
         d_s = dp["drag_to_lift"] / scale
-        cl = inputs["cl_star"][:, None]
+        cl = per_station(inputs["cl_star"])
         d_eta = dp["eta"] / scale
         if not np.all(np.isfinite(d_eta) & (d_eta != 0.0)):
             index = np.argwhere(~(np.isfinite(d_eta) & (d_eta != 0.0)))[0]

@@ -110,6 +110,8 @@ class FeasibilityLedger:
     def __init__(self, num_nodes):
         self.num_nodes = num_nodes
         self._checks = {}
+        #: True while a solver iterates over the group (thrust target): the nodes are recorded, not raised.
+        self.deferred = False
 
     def record(self, key, mask, reason, details):
         """Store (or replace) the result of check ``key``: see :func:`report_infeasible`."""
@@ -193,6 +195,6 @@ class FeasibilityComp(om.ExplicitComponent):
     def compute(self, inputs, outputs):
         ledger = self.options["ledger"]
         infeasible = ledger.infeasible
-        if self.options["on_infeasible"] == "raise" and np.any(infeasible):
+        if self.options["on_infeasible"] == "raise" and np.any(infeasible) and not ledger.deferred:
             raise om.AnalysisError(f"BILD: {ledger.message()}")
         outputs["feasible"] = np.where(infeasible, 0.0, 1.0)

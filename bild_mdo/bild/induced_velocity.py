@@ -2,6 +2,12 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.airfoil_point import (
+    add_airfoil_point_inputs,
+    airfoil_point_pattern,
+    declare_spanwise_option,
+    per_station,
+)
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.bild.quartic import axial_velocity_root
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
@@ -51,7 +57,8 @@ class InducedVelocityComp(om.ExplicitComponent):
     v_theta[nn, nr] (m/s)
         Rotational blade speed ``Omega r``.
     cl_star[nn] (-), cd_star[nn] (-)
-        Lift and drag coefficients at the maximum lift-to-drag ratio.
+        Lift and drag coefficients at the maximum lift-to-drag ratio
+        (``[nn, nr]`` with ``varies_along_span=True``, :mod:`~bild_mdo.bild.airfoil_point`).
 
     Outputs
     -------
@@ -64,9 +71,11 @@ class InducedVelocityComp(om.ExplicitComponent):
     def initialize(self):
         declare_size_options(self.options)
         declare_feasibility_option(self.options)
+        declare_spanwise_option(self.options)
 
     def setup(self):
-        add_inputs(self, ("eta2", "v_axial", "v_theta", "cl_star", "cd_star"))
+        add_inputs(self, ("eta2", "v_axial", "v_theta"))
+        add_airfoil_point_inputs(self, ("cl_star", "cd_star"))
         add_outputs(self, ("u_axial", "u_theta"))
 
     def setup_partials(self):
@@ -75,13 +84,15 @@ class InducedVelocityComp(om.ExplicitComponent):
         self.declare_partials("u_axial", ["eta2", "v_theta"], rows=rows, cols=cols)
         self.declare_partials("u_theta", ["eta2", "v_theta"], rows=rows, cols=cols)
         rows, cols = dist_wrt_node(nn, nr)
-        self.declare_partials("u_axial", ["v_axial", "cl_star", "cd_star"], rows=rows, cols=cols)
+        self.declare_partials("u_axial", ["v_axial"], rows=rows, cols=cols)
+        rows, cols = airfoil_point_pattern(self)
+        self.declare_partials("u_axial", ["cl_star", "cd_star"], rows=rows, cols=cols)
 
     def _terms(self, inputs):
         eta2 = inputs["eta2"]
         v_t = inputs["v_theta"]
         v_x = inputs["v_axial"][:, None]
-        s = (inputs["cd_star"] / inputs["cl_star"])[:, None]
+        s = per_station(inputs["cd_star"] / inputs["cl_star"])
         b = 0.5 * (v_x - v_t * s)
         c = eta2 * v_t * (v_t * (1.0 - eta2) + v_x * s)
         return eta2, v_t, v_x, s, b, c
@@ -109,8 +120,8 @@ class InducedVelocityComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         eta2, v_t, v_x, s, b, c = self._terms(inputs)
         u_axial, root = axial_velocity_root(b, c)
-        cl = inputs["cl_star"][:, None]
-        cd = inputs["cd_star"][:, None]
+        cl = per_station(inputs["cl_star"])
+        cd = per_station(inputs["cd_star"])
 
         # Differentiating u**2 - 2 b u - c = 0 (Eq. (25)): du = (2 u db + dc) / (2 sqrt(b**2 + c)).
         inv_two_root = 0.5 / root

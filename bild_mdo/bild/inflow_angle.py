@@ -2,9 +2,15 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.airfoil_point import (
+    add_airfoil_point_inputs,
+    airfoil_point_pattern,
+    declare_spanwise_option,
+    per_station,
+)
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
-from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
+from bild_mdo.utils.sparsity import dist_wrt_dist
 
 
 class InflowAngleComp(om.ExplicitComponent):
@@ -37,7 +43,8 @@ class InflowAngleComp(om.ExplicitComponent):
     v_theta[nn, nr] (m/s)
         Rotational blade speed ``Omega r``.
     alpha_star[nn] (rad)
-        Angle of attack of maximum lift-to-drag ratio.
+        Angle of attack of maximum lift-to-drag ratio (``[nn, nr]`` with
+        ``varies_along_span=True``, :mod:`~bild_mdo.bild.airfoil_point`).
 
     Outputs
     -------
@@ -52,9 +59,11 @@ class InflowAngleComp(om.ExplicitComponent):
     def initialize(self):
         declare_size_options(self.options)
         declare_feasibility_option(self.options)
+        declare_spanwise_option(self.options)
 
     def setup(self):
-        add_inputs(self, ("u_axial", "u_theta", "v_theta", "alpha_star"))
+        add_inputs(self, ("u_axial", "u_theta", "v_theta"))
+        add_airfoil_point_inputs(self, ("alpha_star",))
         add_outputs(self, ("phi", "inflow_speed", "twist"))
 
     def setup_partials(self):
@@ -62,7 +71,7 @@ class InflowAngleComp(om.ExplicitComponent):
         rows, cols = dist_wrt_dist(nn, nr)
         for name in ("phi", "inflow_speed", "twist"):
             self.declare_partials(name, ["u_axial", "u_theta", "v_theta"], rows=rows, cols=cols)
-        rows, cols = dist_wrt_node(nn, nr)
+        rows, cols = airfoil_point_pattern(self)
         self.declare_partials("twist", "alpha_star", rows=rows, cols=cols, val=1.0)
 
     def compute(self, inputs, outputs):
@@ -77,7 +86,7 @@ class InflowAngleComp(om.ExplicitComponent):
         phi = np.arctan(u_axial / v_t)
         outputs["phi"] = phi
         outputs["inflow_speed"] = np.sqrt(u_axial ** 2 + v_t ** 2)
-        outputs["twist"] = phi + inputs["alpha_star"][:, None]
+        outputs["twist"] = phi + per_station(inputs["alpha_star"])
 
     def compute_partials(self, inputs, partials):
         u_axial = inputs["u_axial"]

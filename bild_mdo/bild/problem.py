@@ -42,9 +42,9 @@ def _polar(airfoil):
 
 
 def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_form, correction, input_mode,
-                  on_infeasible):
+                  on_infeasible, thrust_target):
     key = (num_nodes, num_radial, num_blades, id(polar), loss_model, chord_form, correction, input_mode,
-           on_infeasible)
+           on_infeasible, thrust_target)
     hit = _PROBLEM_CACHE.get(key)
     # id() can be reused after an object dies; the stored reference proves it is the same polar.
     if hit is not None and hit[0] is polar:
@@ -52,7 +52,7 @@ def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_fo
         return hit[1]
     group = BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades, polar=polar,
                       loss_model=loss_model, chord_form=chord_form, root_chord_correction=correction,
-                      input_mode=input_mode, on_infeasible=on_infeasible)
+                      input_mode=input_mode, on_infeasible=on_infeasible, thrust_target=thrust_target)
     prob = om.Problem(group, reports=False)
     prob.setup(check=False)
     prob.final_setup()
@@ -63,7 +63,8 @@ def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_fo
 
 
 def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", loss_model="tip_hub",
-                 chord_form="thrust", root_chord_correction=None, input_mode="v_axial", on_infeasible="raise"):
+                 chord_form="thrust", root_chord_correction=None, input_mode="v_axial", on_infeasible="raise",
+                 thrust_target=False):
     """The cached, set-up BILD problem :func:`~bild_mdo.results.design.design_rotor` uses for this configuration.
 
     For users who want OpenMDAO access (totals, recorders) to the same model;
@@ -75,8 +76,9 @@ def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", l
         Designs, radial stations and blades (integers >= 1).
     airfoil : Polar or str
         A polar or a built-in airfoil name (:func:`bild_mdo.airfoil.builtin.resolve_polar`).
-    loss_model, chord_form, root_chord_correction, input_mode, on_infeasible
-        Options of :class:`~bild_mdo.bild.BILDGroup`.  With ``on_infeasible='flag'``
+    loss_model, chord_form, root_chord_correction, input_mode, on_infeasible, thrust_target
+        Options of :class:`~bild_mdo.bild.BILDGroup` (``thrust_target=True``: set the
+        input ``thrust_target`` (N) instead of ``ref_chord``, which becomes an output).  With ``on_infeasible='flag'``
         the run never fails for an infeasible design: read the output ``feasible``
         and ``prob.model.feasibility`` (the reasons) after ``run_model``.
 
@@ -88,4 +90,5 @@ def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", l
     polar = _polar(airfoil)
     return _bild_problem(validation.integer("num_nodes", num_nodes), validation.integer("num_radial", num_radial),
                          validation.integer("num_blades", num_blades), polar, loss_model, chord_form,
-                         root_chord_correction, input_mode, on_infeasible)
+                         root_chord_correction, input_mode, on_infeasible,
+                         thrust_target)

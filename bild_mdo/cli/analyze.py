@@ -4,31 +4,35 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo import validation
-from bild_mdo.airfoil.builtin import available_polars
 from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.cli.files import airfoil_polar, figure_file, output_file
+from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, figure_file, output_file
 from bild_mdo.io.files import read_geometry
 from bild_mdo.plots.curves import plot_performance_curves
 from bild_mdo.results.off_design import off_design_sweep
 
 #: One-line help of the subcommand.
-HELP = "BEM off-design analysis of a blade geometry file over J or rpm"
+HELP = "BEM off-design analysis of a blade geometry file over J, rpm or collective pitch"
 #: Description of the subcommand.
 DESCRIPTION = (
     "Analyse a fixed blade (a CSV, JSON or QPROP file as written by 'bild-mdo design', or any QPROP propeller "
-    "file) with BEM over a range of advance ratios J = V/(nD) [-] at fixed rpm, or of rotor speeds [rpm] at fixed "
-    "axial velocity [m/s], in one vectorised run.  Prints T [N], Q [N m], P [kW], eta, FM, C_T, C_Q, C_P and the "
-    "maximum-efficiency point.")
+    "file) with BEM over a range of advance ratios J = V/(nD) [-] at fixed rpm, of rotor speeds [rpm] at fixed "
+    "axial velocity [m/s], or of collective pitches [deg] (alone: at the design point; with a J or rpm sweep: "
+    "every pitch at every point), in one vectorised run.  Prints T [N], Q [N m], P [kW], eta, FM, C_T, C_Q, C_P "
+    "and the maximum-efficiency point.")
 
 
 def add_analyze_arguments(parser):
     """Add the ``analyze`` options to an argparse parser and return it."""
     parser.add_argument("geometry", metavar="GEOMETRY_FILE", help="blade geometry: .csv, .json, or a QPROP file")
-    sweep = parser.add_mutually_exclusive_group(required=True)
+    sweep = parser.add_mutually_exclusive_group()
     sweep.add_argument("--advance-ratio", type=float, nargs=3, metavar=("START", "STOP", "N"),
                        help="sweep J [-] from START to STOP in N points, at --at-rpm")
     sweep.add_argument("--rpm", type=float, nargs=3, metavar=("START", "STOP", "N"),
                        help="sweep the rotor speed [rpm] from START to STOP in N points, at --v-axial")
+    parser.add_argument("--collective-pitch", type=float, nargs=3, metavar=("START", "STOP", "N"),
+                        help="collective pitch [deg] added to the twist, from START to STOP in N points: alone, a "
+                             "pitch sweep at the design point; with --advance-ratio or --rpm, every pitch at every "
+                             "point (one value: START STOP 1)")
     parser.add_argument("--at-rpm", type=float, default=None, metavar="RPM",
                         help="rotor speed [rpm] of a J sweep (default: the design rpm stored in the file)")
     parser.add_argument("--v-axial", type=float, default=None, metavar="V",
@@ -36,9 +40,9 @@ def add_analyze_arguments(parser):
     parser.add_argument("--altitude", type=float, default=None, metavar="H",
                         help="ISA altitude [m] (default: the file's design altitude, else 0)")
     parser.add_argument("--airfoil", default=None, metavar="AIRFOIL",
-                        help=f"airfoil polar: a built-in name ({', '.join(available_polars())}) or any airfoil "
-                             "bild_mdo.airfoil.builtin.resolve_polar accepts (default: the airfoil named in the "
-                             "file; for a foreign QPROP file, its CL/CD model lines)")
+                        help=AIRFOIL_HELP + " (default: the airfoil the file carries: the JSON's polar, the polar "
+                                            "file named in a CSV or QPROP file, else its airfoil name; for a "
+                                            "foreign QPROP file, its CL/CD model lines)")
     parser.add_argument("--loss-model", choices=LOSS_MODELS, default=None,
                         help="Prandtl loss factor (default: the file's, else tip_hub)")
     parser.add_argument("--design", type=int, default=0, metavar="I",
@@ -56,8 +60,10 @@ def _sweep_points(option, triple):
     for label, value in (("START", start), ("STOP", stop)):
         if option == "--rpm":
             validation.positive(f"--rpm {label}", value, units="rpm")
-        else:
+        elif option == "--advance-ratio":
             validation.non_negative(f"--advance-ratio {label}", value)
+        else:
+            validation.real_array(f"{option} {label}", value, units="deg", ndim=(0,))
     return np.linspace(start, stop, count)
 
 
@@ -70,8 +76,16 @@ def run_analyze(args, out):
         Exit code, 0.
     """
     # Argument errors first: they need no file and leave none behind.
+    pitch = None if args.collective_pitch is None else _sweep_points("--collective-pitch", args.collective_pitch)
+    if args.advance_ratio is None and args.rpm is None and pitch is None:
+        raise ValueError("give the sweep: --advance-ratio START STOP N, --rpm START STOP N or "
+                         "--collective-pitch START STOP N")
     option = "--advance-ratio" if args.advance_ratio is not None else "--rpm"
-    points = _sweep_points(option, args.advance_ratio if args.advance_ratio is not None else args.rpm)
+    sweep = args.advance_ratio if args.advance_ratio is not None else args.rpm
+    points = _sweep_points(option, sweep) if sweep is not None else np.zeros(1)
+    if pitch is not None:
+        validation.memory_bound("--collective-pitch N times the sweep's N", pitch.size * points.size, 2,
+                                hint="use fewer points", at_least=True)
     for name in ("at_rpm", "v_axial", "altitude"):
         value = getattr(args, name)
         if value is not None:
@@ -79,13 +93,18 @@ def run_analyze(args, out):
     csv_file = output_file("--csv", args.csv)
     plot_file = figure_file("--plot", args.plot)
     polar = airfoil_polar("--airfoil", args.airfoil)
-    geometry = read_geometry(args.geometry, design=args.design)
-    validation.memory_bound(f"{option} N", points.size, geometry.num_radial, hint="use fewer points")
+    geometry = read_geometry(args.geometry, design=args.design, load_polar=polar is None)
+    count = points.size * (1 if pitch is None else pitch.size)
+    validation.memory_bound("sweep points", count, geometry.num_radial, hint="use fewer points")
     kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=polar)
+    if pitch is not None:
+        kwargs["collective_pitch"] = np.radians(pitch)
     if args.advance_ratio is not None:
         result = off_design_sweep(geometry, advance_ratios=points, rpm=args.at_rpm, **kwargs)
-    else:
+    elif args.rpm is not None:
         result = off_design_sweep(geometry, rpms=points, v_axial=args.v_axial, **kwargs)
+    else:
+        result = off_design_sweep(geometry, rpm=args.at_rpm, v_axial=args.v_axial, **kwargs)
     print(f"geometry: {args.geometry}: {geometry.num_radial} stations, B = {geometry.num_blades}, "
           f"R = {geometry.radius:.6g} m, hub radius {geometry.hub_radius:.6g} m, "
           f"airfoil {args.airfoil or geometry.airfoil or 'from the QPROP CL/CD lines'}", file=out)

@@ -6,10 +6,9 @@ import warnings
 import numpy as np
 
 from bild_mdo import validation
-from bild_mdo.airfoil.builtin import available_polars
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.chord import CHORD_FORMS
-from bild_mdo.cli.files import airfoil_polar, batch_files, figure_file, output_file
+from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade
 from bild_mdo.results.design import design_rotor
@@ -29,7 +28,8 @@ _BATCH_OPTIONS = (
     ("--radius", 1.5, "R", "tip radius R [m]"),
     ("--hub-radius-ratio", 0.2, "X", "hub radius / tip radius [-]"),
     ("--ref-radius-ratio", 0.5, "X", "reference station r_ref / R [-]"),
-    ("--ref-chord", 0.15, "C", "chord at the reference station c_ref [m]"),
+    ("--ref-chord", None, "C", "chord at the reference station c_ref [m] (default 0.15, unless --thrust)"),
+    ("--thrust", None, "T", "thrust target T* [N] instead of --ref-chord: the reference chord is solved for it"),
     ("--altitude", 0.0, "H", "geometric altitude for the ISA atmosphere [m], 0 ... 11000"),
 )
 
@@ -45,9 +45,8 @@ def add_design_arguments(parser):
         parser.add_argument(option, type=float, nargs="+", default=default, metavar=metavar, help=text)
     parser.add_argument("--num-blades", type=int, default=3, metavar="B", help="number of blades B [-]")
     parser.add_argument("--airfoil", default="naca4412", metavar="AIRFOIL",
-                        help=f"airfoil polar: a built-in name ({', '.join(available_polars())}; naca4412 is the "
-                             "XFOIL surrogate, analytic a closed-form test polar) or any airfoil "
-                             "bild_mdo.airfoil.builtin.resolve_polar accepts")
+                        help=AIRFOIL_HELP + "; the geometry files carry it (JSON embeds the polar, CSV and QPROP "
+                                            "write NAME.polar.json next to them where a name does not rebuild it)")
     parser.add_argument("--num-radial", type=int, default=30, metavar="N",
                         help="radial stations [-] (midpoints of equal annuli from hub to tip)")
     parser.add_argument("--loss-model", choices=LOSS_MODELS, default="tip_hub", help="Prandtl loss factor")

@@ -10,7 +10,8 @@ import importlib.util
 import os
 from pathlib import Path
 
-from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.airfoil.builtin import available_polars
+from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.io.files import check_output_file
 
 #: Figure formats matplotlib writes (by file suffix); a name without a suffix gets ``.png``.
@@ -72,11 +73,19 @@ def output_folder(option, path):
     return folder
 
 
+#: What ``--airfoil`` accepts, for the help of every subcommand that has it.
+AIRFOIL_HELP = (f"airfoil: a built-in name ({', '.join(available_polars())}), a NACA 4- or 5-digit designation "
+                "(naca2412: XFOIL polars made on first use, then cached), a polar file, a folder of polar files, "
+                "a coordinates file, neuralfoil:NAME, a polar file written next to a geometry file "
+                "(NAME.polar.json), AIRFOIL@re=RE (frozen at one Reynolds number), or airfoils along the span "
+                "at radial fractions r/R: '0.2:naca4415;1:naca4412' (or with commas)")
+
+
 def airfoil_polar(option, text):
-    """The polar ``--airfoil`` names (:func:`~bild_mdo.airfoil.builtin.resolve_polar`); its ValueError is the one line."""
+    """The polar ``--airfoil`` names (:func:`~bild_mdo.io.airfoil.resolve_airfoil`); its ValueError is the one line."""
     if text is None:
         return None
     try:
-        return resolve_polar(text)
+        return resolve_airfoil(text)
     except ValueError as err:
         raise ValueError(f"{option}: {err}") from None

@@ -10,8 +10,11 @@ import os
 import sys
 import tempfile
 
+from bild_mdo.cli.files import AIRFOIL_HELP
+from bild_mdo.io.airfoil import airfoil_text
 from bild_mdo.optimization.problem import OPTIMIZERS
 from bild_mdo.plots.verification import require_matplotlib, save_figures
+from bild_mdo.airfoil.text import DEFAULT_AIRFOIL, sweep_polar
 from bild_mdo.verification.case_functions import bild_batch, optimize_case, require_optimizer
 from bild_mdo.verification.cases import SweepSpec, check_workers
 from bild_mdo.verification.runner import default_db_path, run_sweep, sweep_summary, verification_table
@@ -40,7 +43,7 @@ def add_verify_arguments(parser):
     """Add the ``verify`` options to an argparse parser.
 
     Options: ``--levels``, ``--workers``, ``--scheduler``, ``--db``,
-    ``--optimizer``, ``--figures``, ``--no-progress``.
+    ``--optimizer``, ``--airfoil``, ``--figures``, ``--no-progress``.
 
     Parameters
     ----------
@@ -63,6 +66,11 @@ def add_verify_arguments(parser):
                              "(default: bild-verify-L<levels>-<optimizer>.sqlite)")
     parser.add_argument("--optimizer", choices=OPTIMIZERS, default="slsqp",
                         help="optimiser of the reference BEM optimisation (default: slsqp)")
+    parser.add_argument("--airfoil", default=DEFAULT_AIRFOIL, metavar="AIRFOIL",
+                        help=AIRFOIL_HELP.replace(", a polar file written next to a geometry file (NAME.polar.json)",
+                                                  "")
+                        + "; stored as written and part of the sweep's fingerprint (a relative path: rerun from "
+                          "the same folder); the default is the paper's NACA 4412")
     parser.add_argument("--figures", metavar="DIR", default=None,
                         help="write Fig. 4 and Fig. 5 as PNG files into DIR (needs bild-mdo[plot])")
     parser.add_argument("--no-progress", action="store_true", help="no progress report on stderr")
@@ -93,7 +101,8 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
     ValueError
         Before any work and before the store file exists: ``--levels``
         outside 2 ... 15 (the message gives the estimated memory and time),
-        ``--workers`` below 1, a ``--figures`` folder that cannot be written,
+        ``--workers`` below 1, an ``--airfoil`` that names no airfoil, a
+        ``--figures`` folder that cannot be written,
         a ``--db`` path that cannot hold a store (``StoreError``).  During the
         sweep: a full disk (``StoreFullError``; the stored rows stay, rerun to
         resume), another sweep writing to the file (``StoreBusyError``), cases
@@ -102,10 +111,15 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
         Before any work: the optimiser's package, or matplotlib with ``--figures``, is missing.
     """
     out = sys.stdout if out is None else out
-    spec = SweepSpec(levels=args.levels, optimizer=args.optimizer)
+    airfoil = airfoil_text(getattr(args, "airfoil", DEFAULT_AIRFOIL))
+    spec = SweepSpec(levels=args.levels, optimizer=args.optimizer, airfoil=airfoil)
     if args.scheduler is None:
         check_workers(args.workers)
     _require_optimizer(args.optimizer)
+    try:
+        sweep_polar(airfoil)  # an unknown airfoil stops here, before any file (XFOIL runs once if needed)
+    except ValueError as err:
+        raise ValueError(f"--airfoil: {err}") from None
     db_path = args.db or default_db_path(spec)
     if args.figures:
         # Fail before hours of computing, not after.

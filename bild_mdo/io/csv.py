@@ -10,6 +10,7 @@ one row per station::
     # loss_model: tip_hub
     # radius [m]: 1.5
     # hub_radius [m]: 0.3
+    # polar_file: blade.polar.json
     # design_point.v_axial [m/s]: 0
     # design_point.rpm [rpm]: 800
     ...
@@ -17,6 +18,9 @@ one row per station::
     0.32,0.1359434876,25.930843669
     ...
 
+The ``polar_file`` line is written for a polar that its name does not
+rebuild (tables, a spanwise set): the polar file next to the CSV
+(:mod:`bild_mdo.io.airfoil`) holds it, and the reader loads it from there.
 On reading, the header may give lengths in m, cm, mm or in and the twist in
 deg or rad; a file without ``radius``/``hub_radius`` lines gets them by
 extending the first and last station half a spacing outwards (exact for
@@ -29,6 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
+from bild_mdo.io.airfoil import (needs_polar_file, polar_description, polar_file_for, read_polar_file,
+                                 write_polar_file)
 from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, FileMetadata,
                                   as_geometry, design_point_key, file_errors, format_number, split_key)
 
@@ -54,6 +60,9 @@ def write_csv(path, geometry):
              f"# loss_model: {geometry.loss_model}",
              f"# radius [m]: {format_number(geometry.radius)}",
              f"# hub_radius [m]: {format_number(geometry.hub_radius)}"]
+    description = polar_description(geometry.polar, geometry.airfoil)
+    if needs_polar_file(description):
+        lines.append(f"# polar_file: {write_polar_file(polar_file_for(path), description).name}")
     lines += [f"# design_point.{design_point_key(key)}: {format_number(value)}"
               for key, value in geometry.design_point.items()]
     lines.append("r [m],chord [m],twist [deg]")
@@ -84,12 +93,15 @@ def _extend_ends(radii):
     return hub, tip
 
 
-def read_csv(path):
+def read_csv(path, load_polar=True):
     """Read a geometry CSV (see the module docstring).
 
     Parameters
     ----------
     path : str or path
+    load_polar : bool
+        Read the polar file that a ``polar_file`` line names (``RotorGeometry.polar``);
+        False skips it (when the polar is given otherwise).
 
     Returns
     -------
@@ -111,13 +123,16 @@ def read_csv(path):
         raise ValueError(f"{path}: no geometry table found (need a header 'r [m],chord [m],twist [deg]' and rows)")
     if "num_blades" not in meta:
         raise ValueError(f"{path}: the number of blades is missing (a line '# num_blades: 3')")
+    polar = None
+    if load_polar and meta.text("polar_file"):
+        polar = read_polar_file(path.parent / meta.text("polar_file"))
     with file_errors(path):
         data = np.array(rows)
         radii = data[:, 0]
         hub, tip = _extend_ends(radii) if radii.size > 1 else (0.0, radii[-1])
         return meta.geometry(radii, data[:, 1], data[:, 2], radius=meta.length("radius", tip),
                              hub_radius=meta.length("hub_radius", hub), num_blades=meta.integer("num_blades"),
-                             name=meta.text("name", path.stem))
+                             name=meta.text("name", path.stem), polar=polar)
 
 
 def _read_line(line, line_no, meta, rows, header):

@@ -43,7 +43,7 @@ def write_geometry(path, geometry, fmt=None, **kwargs):
     return writer(path, geometry, **kwargs)
 
 
-def read_geometry(path, fmt=None, design=0):
+def read_geometry(path, fmt=None, design=0, load_polar=True):
     """Read a geometry file written by bild-mdo (or any QPROP propeller file).
 
     Parameters
@@ -53,6 +53,9 @@ def read_geometry(path, fmt=None, design=0):
         Default: from the suffix (``.csv``, ``.json``, anything else QPROP).
     design : int
         Design of a multi-design JSON file.
+    load_polar : bool
+        Rebuild the polar the file carries (JSON ``"polar"``, the polar file a
+        CSV or QPROP file names) into ``RotorGeometry.polar``; False skips it.
 
     Returns
     -------
@@ -72,8 +75,8 @@ def read_geometry(path, fmt=None, design=0):
         raise FileNotFoundError(f"geometry file not found: {path}")
     kind = _format_of(path, fmt)
     if kind == "json":
-        return read_json(path, design=design)
-    return read_csv(path) if kind == "csv" else read_qprop(path)
+        return read_json(path, design=design, load_polar=load_polar)
+    return (read_csv if kind == "csv" else read_qprop)(path, load_polar=load_polar)
 
 
 def check_output_file(path, option="output file"):

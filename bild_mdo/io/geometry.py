@@ -5,8 +5,10 @@ of one blade, the tip and hub radius, the number of blades, the airfoil name
 and the design point the geometry was made for.  The three file formats
 (:mod:`bild_mdo.io.csv`, :mod:`bild_mdo.io.json`, :mod:`bild_mdo.io.qprop`)
 always write the units into the file, as ``name [unit]`` keys
-(:func:`unit_key`), and numbers to :data:`SIGNIFICANT_DIGITS` significant
-digits, so writing then reading gives the same geometry to 12 digits.
+(:func:`unit_key`).  CSV and QPROP write numbers to :data:`SIGNIFICANT_DIGITS`
+significant digits, so writing then reading gives the same geometry to 12
+digits; JSON writes every digit.  Each format carries the blade's airfoil
+(:mod:`bild_mdo.io.airfoil`).
 
 This module knows no result class: :func:`as_geometry` takes a
 :class:`RotorGeometry`, a dict of its fields, or any object with a
@@ -93,7 +95,8 @@ class RotorGeometry:
     num_blades : int
         Number of blades.
     airfoil : str or None
-        Built-in airfoil name (:func:`~bild_mdo.airfoil.get_polar`), None if unknown.
+        Airfoil name: a label, or text that :func:`~bild_mdo.io.airfoil.resolve_airfoil`
+        resolves (a built-in name, a NACA designation, ...); None if unknown.
     loss_model : str
         Prandtl loss model of the design (``'tip_hub'``, ``'tip'``, ``'none'``).
     design_point : dict
@@ -103,7 +106,9 @@ class RotorGeometry:
     polar_coefficients : dict or None
         QPROP airfoil-model numbers read from a QPROP file.
     polar : Polar or None
-        The polar the blade was designed with, when known (not written to files).
+        The polar the blade was designed with, when known.  The files carry it
+        (JSON embeds it, CSV and QPROP name a polar file next to them:
+        :mod:`bild_mdo.io.airfoil`) and the readers rebuild it.
     """
 
     radii: np.ndarray

@@ -4,7 +4,14 @@ One object with ``"format": "bild-mdo rotor geometry"``, ``"version": 1`` and a
 list ``"designs"`` of objects with the keys ``"name"``, ``"airfoil"``,
 ``"num_blades"``, ``"loss_model"``, ``"radius [m]"``, ``"hub_radius [m]"``,
 ``"r [m]"``, ``"chord [m]"``, ``"twist [deg]"`` (lists) and
-``"design_point"`` (``{"v_axial [m/s]": ..., "rpm [rpm]": ...}``).  Other keys
+``"design_point"`` (``{"v_axial [m/s]": ..., "rpm [rpm]": ...}``), and
+``"polar"``: the description of the design's polar
+(:func:`~bild_mdo.airfoil.serialize.polar_to_dict`: tables, analytic
+parameters or a spanwise set); a file without it names a built-in airfoil in
+``"airfoil"``, or needs the polar given when read.  Floats are written with
+every digit (Python's shortest round-trip form), so the polar and the
+stations read back are the same numbers (the twist, kept in degrees, to the
+last bit of the conversion).  Other keys
 (:meth:`~bild_mdo.results.design.DesignResult.to_json` adds ``"performance"``
 and ``"distributions"``) are ignored by the reader.
 """
@@ -16,8 +23,9 @@ from pathlib import Path
 import numpy as np
 
 from bild_mdo import validation
+from bild_mdo.io.airfoil import polar_description, polar_from_description
 from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, RotorGeometry,
-                                  as_geometry, design_point_key, file_errors, format_number, split_key, unit_key)
+                                  as_geometry, design_point_key, file_errors, split_key, unit_key)
 
 
 def _geometry_entry(geometry):
@@ -35,13 +43,14 @@ def _geometry_entry(geometry):
     }
 
 
-def _round_floats(obj):
+def _plain(obj):
+    """``obj`` with NumPy scalars as Python numbers; floats keep every digit (json writes their shortest repr)."""
     if isinstance(obj, (float, np.floating)):
-        return float(format_number(obj))
+        return float(obj)
     if isinstance(obj, dict):
-        return {k: _round_floats(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_round_floats(v) for v in obj]
+        return {k: _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple, np.ndarray)):
+        return [_plain(v) for v in obj]
     if isinstance(obj, np.integer):
         return int(obj)
     return obj
@@ -63,14 +72,22 @@ def write_json(path, geometries, extras=None):
     """
     if not isinstance(geometries, (list, tuple)):
         geometries = [geometries]
-    entries = [_geometry_entry(as_geometry(g)) for g in geometries]
+    geometries = [as_geometry(g) for g in geometries]
+    entries = [_geometry_entry(g) for g in geometries]
     for entry, extra in zip(entries, extras or []):
         entry.update(extra)
-    doc = {"format": FORMAT_NAME, "version": FORMAT_VERSION,
-           "units": {"r": "m", "chord": "m", "twist": "deg", "radius": "m", "hub_radius": "m"},
-           "designs": entries}
+    doc = _plain({"format": FORMAT_NAME, "version": FORMAT_VERSION,
+                  "units": {"r": "m", "chord": "m", "twist": "deg", "radius": "m", "hub_radius": "m"},
+                  "designs": entries})
+    descriptions = {}
+    for entry, geometry in zip(doc["designs"], geometries):
+        if geometry.polar is not None:
+            if id(geometry.polar) not in descriptions:
+                descriptions[id(geometry.polar)] = polar_description(geometry.polar, geometry.airfoil)
+            if descriptions[id(geometry.polar)] is not None:
+                entry["polar"] = descriptions[id(geometry.polar)]
     path = Path(path)
-    path.write_text(json.dumps(_round_floats(doc), indent=1) + "\n", encoding="utf-8")
+    path.write_text(json.dumps(doc, indent=1) + "\n", encoding="utf-8")
     return path
 
 
@@ -110,7 +127,7 @@ def _short(value):
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def read_json(path, design=0):
+def read_json(path, design=0, load_polar=True):
     """Read design ``design`` of a geometry JSON file.
 
     Parameters
@@ -118,6 +135,9 @@ def read_json(path, design=0):
     path : str or path
     design : int
         Index into the file's ``"designs"`` list (negative counts from the end).
+    load_polar : bool
+        Rebuild the design's polar from its ``"polar"`` entry (``RotorGeometry.polar``);
+        False skips it (when the polar is given otherwise).
 
     Returns
     -------
@@ -145,10 +165,13 @@ def read_json(path, design=0):
             raise ValueError(f"{path}: 'design_point' must be an object of 'name [unit]': number entries, "
                              f"got {_short(raw_point)}")
         point = {split_key(key)[0]: value for key, value in raw_point.items()}
+        polar = None
+        if load_polar and entry.get("polar") is not None:
+            polar = polar_from_description(entry["polar"], f"{path}: design {design}")
         return RotorGeometry(radii=_lookup(entry, "r", "m", path), chord=_lookup(entry, "chord", "m", path),
                              twist=_lookup(entry, "twist", "deg", path),
                              radius=float(_lookup(entry, "radius", "m", path, scalar=True)),
                              hub_radius=float(_lookup(entry, "hub_radius", "m", path, scalar=True)),
                              num_blades=entry["num_blades"], airfoil=entry.get("airfoil"),
                              loss_model=entry.get("loss_model", "tip_hub"), design_point=point,
-                             name=entry.get("name", path.stem))
+                             name=entry.get("name", path.stem), polar=polar)

@@ -29,13 +29,16 @@ least half the nearest station's, as QPROP needs positive chords).  ``r`` and
 ``c`` are written in metres and ``beta`` in degrees with factors 1 and offsets
 0, and those units are declared in the ``#  r [m]  chord [m]  beta [deg]``
 comment above the rows.  bild-mdo's metadata (airfoil, hub radius, design
-point, and ``end_stations = extrapolated``) sit in
+point, ``end_stations = extrapolated`` and, for a polar that its name
+does not rebuild, ``polar_file = <stem>.polar.json``, the polar file written
+next to it, :mod:`bild_mdo.io.airfoil`) sit in
 ``# bild-mdo: key [unit] = value`` comment lines, which QPROP skips; reading
 such a file drops the two extrapolated rows again, so the round trip returns
 the BILD stations.  A QPROP file from elsewhere is read with QPROP's meaning:
 the blade runs from the first station (the hub radius) to ``R``.
 
-The airfoil lines are fitted to the polar at the design's reference Reynolds
+The airfoil lines are fitted to the polar (a spanwise set: its blend at
+r/R = :data:`QPROP_RADIAL_FRACTION`) at the design's reference Reynolds
 number ``REref`` (:func:`qprop_airfoil_coefficients`): ``CL0`` and ``CL_a``
 from a least-squares line through ``cl`` over the 6 degrees of angle of attack
 below the maximum-L/D angle ``alpha*``; ``CLmax`` and ``CLmin`` are the extreme
@@ -58,14 +61,18 @@ import numpy as np
 
 from bild_mdo import validation
 from bild_mdo.airfoil.analytic import AnalyticPolar
-from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.constants import angular_velocity
+from bild_mdo.io.airfoil import (needs_polar_file, polar_description, polar_file_for, read_polar_file,
+                                 resolve_airfoil, write_polar_file)
 from bild_mdo.io.geometry import (FORMAT_VERSION, FileMetadata, as_geometry, design_point_key, file_errors,
                                   format_number)
 
 #: Half width (in cl) of the band about the fitted lift line that counts as attached flow.
 LINEAR_LIFT_BAND = 0.05
+
+#: r/R at which the airfoil lines of a blade with several airfoils along the span are fitted.
+QPROP_RADIAL_FRACTION = 0.75
 
 #: QPROP's airfoil-model numbers, in the order of the file's lines.
 QPROP_COEFFICIENTS = ("CL0", "CL_a", "CLmin", "CLmax", "CD0", "CD2u", "CD2l", "CLCD0", "REref", "REexp")
@@ -88,14 +95,16 @@ def qprop_airfoil_coefficients(polar, reynolds):
         Keys :data:`QPROP_COEFFICIENTS` (``CL_a`` per rad).
     """
     reynolds = float(reynolds)
-    star = polar.max_lift_to_drag(np.array([reynolds / 2.0, reynolds, 2.0 * reynolds]))
+    # QPROP has one airfoil: a spanwise set is represented by its blend at 3/4 of the radius.
+    station = {"radial_fraction": QPROP_RADIAL_FRACTION} if polar.varies_along_span else {}
+    star = polar.max_lift_to_drag(np.array([reynolds / 2.0, reynolds, 2.0 * reynolds]), **station)
     a_star, cl_star, cd_star = float(star.alpha[1]), float(star.cl[1]), float(star.cd[1])
     alpha_lin = a_star + np.radians(np.linspace(-6.0, 0.0, 25))
-    cl_lin = polar.evaluate(alpha_lin, reynolds).cl
+    cl_lin = polar.evaluate(alpha_lin, reynolds, **station).cl
     cl_a, cl0 = np.polyfit(alpha_lin, cl_lin, 1)
 
     scan = np.radians(np.linspace(-20.0, 25.0, 901))
-    values = polar.evaluate(scan, reynolds)
+    values = polar.evaluate(scan, reynolds, **station)
     cl, cd = np.asarray(values.cl), np.asarray(values.cd)
     i_max = int(np.argmax(cl))
     i_min = int(np.argmin(np.where(scan <= a_star, cl, np.inf)))
@@ -195,7 +204,7 @@ def write_qprop(path, geometry, polar=None, reynolds=None):
                 raise ValueError("give a polar: the geometry names no built-in airfoil")
             coeffs = geometry.polar_coefficients
         else:
-            polar = resolve_polar(geometry.airfoil)
+            polar = resolve_airfoil(geometry.airfoil)
     if polar is not None:
         coeffs = qprop_airfoil_coefficients(polar, _design_reynolds(geometry) if reynolds is None else reynolds)
     c = {k: float(v) for k, v in coeffs.items()}
@@ -220,11 +229,14 @@ def write_qprop(path, geometry, polar=None, reynolds=None):
     ]
     for key, value in geometry.design_point.items():
         lines.append(f"# bild-mdo: design_point.{design_point_key(key)} = {format_number(value)}")
+    path = Path(path)
+    description = polar_description(geometry.polar, geometry.airfoil)
+    if needs_polar_file(description):
+        lines.append(f"# bild-mdo: polar_file = {write_polar_file(polar_file_for(path), description).name}")
     lines.append("# bild-mdo: end_stations = extrapolated")
     lines.append("#  r [m]  chord [m]  beta [deg]")
     radii, chord, twist = _with_end_stations(geometry)
     lines += [" " + "  ".join(map(format_number, row)) for row in zip(radii, chord, np.degrees(twist))]
-    path = Path(path)
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     return path
 
@@ -258,8 +270,11 @@ def _floats(text, count, what, path, line_no, optional=0):
     return values
 
 
-def read_qprop(path):
+def read_qprop(path, load_polar=True):
     """Read a QPROP propeller file (see the module docstring).
+
+    ``load_polar`` reads the polar file that a ``polar_file`` line names
+    (``RotorGeometry.polar``); False skips it.
 
     Returns
     -------
@@ -275,7 +290,10 @@ def read_qprop(path):
     """
     path = Path(path)
     with file_errors(path):
-        return _read_qprop(path)
+        geometry, polar_file = _read_qprop(path)
+    if load_polar and polar_file:
+        geometry.polar = read_polar_file(path.parent / polar_file)
+    return geometry
 
 
 def _read_qprop(path):
@@ -328,4 +346,4 @@ def _read_qprop(path):
         radii, chord, beta = radii[1:-1], chord[1:-1], beta[1:-1]
     hub = meta.length("hub_radius", hub)
     return meta.geometry(radii, chord, beta, radius=tip, hub_radius=hub, num_blades=num_blades, name=name,
-                         polar_coefficients=coefficients)
+                         polar_coefficients=coefficients), meta.text("polar_file")

@@ -6,6 +6,7 @@ import openmdao.api as om
 
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
+from bild_mdo.bem.flow_states import ON_INVALID
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.optimization.parameterization import PARAMETERIZATIONS, ParameterizationComp
@@ -44,6 +45,14 @@ class BEMOptimizationGroup(om.Group):
         Number of B-spline control points (``'bspline'`` only).
     order : int
         B-spline order (``'bspline'`` only).
+    on_invalid : {'ignore', 'warn', 'raise'}
+        What the BEM analysis does about stations in an invalid flow state
+        (:mod:`bild_mdo.bem.flow_states`).  Default ``'ignore'``: an optimiser's
+        trial points may pass through such states (a line search that
+        overshoots, a scaling probe); a warning per model evaluation would
+        flood the output and an error would end a run that recovers on its
+        own.  The state at the optimum is checked instead
+        (:attr:`~bild_mdo.optimization.run.OptimizationResult.invalid_stations`).
 
     Inputs
     ------
@@ -62,6 +71,8 @@ class BEMOptimizationGroup(om.Group):
         Objective ``E / E_ref`` and constraint ``T / T* - 1``.
     chord[nn, nr] (m), twist[nn, nr] (rad)
         Blade geometry at the stations.
+    bem.flow_state[nn, nr]
+        Flow-state code of every station (:mod:`bild_mdo.bem.flow_states`).
     thrust, torque, power, ... [nn]
         Rotor performance, one output per entry of :data:`bild_mdo.bem.metrics.METRICS`
         (:class:`~bild_mdo.bem.performance.RotorPerformanceComp`); station
@@ -78,6 +89,8 @@ class BEMOptimizationGroup(om.Group):
                              desc="'stations': one design value per station; 'bspline': B-spline control points")
         self.options.declare("num_cp", types=int, default=10, desc="number of B-spline control points")
         self.options.declare("order", types=int, default=4, desc="B-spline order (degree + 1)")
+        self.options.declare("on_invalid", default="ignore", values=ON_INVALID,
+                             desc="invalid BEM flow states at a trial point: nothing (default), a warning or an error")
 
     def setup(self):
         opts = self.options
@@ -89,7 +102,8 @@ class BEMOptimizationGroup(om.Group):
                            promotes_outputs=["chord", "twist"])
         self.add_subsystem("bem",
                            BEMAnalysisGroup(**sizes(opts), num_blades=opts["num_blades"],
-                                            polar=opts["polar"], loss_model=opts["loss_model"]),
+                                            polar=opts["polar"], loss_model=opts["loss_model"],
+                                            on_invalid=opts["on_invalid"]),
                            promotes_inputs=["v_axial", "rpm", "radius", "hub_radius", "altitude", "chord", "twist"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
         self.add_subsystem("responses", NormalizedResponsesComp(num_nodes=nn),

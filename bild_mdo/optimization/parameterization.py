@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import numpy as np
 import openmdao.api as om
-from scipy.interpolate import BSpline
 
 from bild_mdo.utils.options import declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_node
@@ -77,6 +76,9 @@ def bspline_matrix(num_cp, num_radial, order=4):
     ValueError
         If ``num_cp < order`` or ``order < 1``.
     """
+    # Imported here: scipy.interpolate costs tens of ms, and only the 'bspline' parameterisation needs it.
+    from scipy.interpolate import BSpline
+
     return BSpline.design_matrix(station_fractions(num_radial), _clamped_knots(num_cp, order), order - 1).toarray()
 
 

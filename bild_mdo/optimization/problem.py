@@ -104,7 +104,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
                                bild_twist=None, reference_chord=None, parameterization="stations",
                                num_cp=10, order=4, num_radial=30, num_blades=3, polar="naca4412",
                                loss_model="tip_hub", scaling="hessian", tol=None, maxiter=None,
-                               print_level=0, energy_loss_ref=None):
+                               print_level=0, energy_loss_ref=None, approx_totals=None):
     """Set up the BEM energy-loss minimisation of one rotor (paper Sec. 5.1) as an ``om.Problem``.
 
     Parameters
@@ -155,6 +155,11 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     energy_loss_ref : float, optional
         Objective reference (W); default
         :func:`~bild_mdo.optimization.initial_design.ideal_energy_loss`.
+    approx_totals : {None, 'fd'}
+        None (default): exact totals from the analytic partials.  ``'fd'``:
+        forward finite differences of the whole model
+        (``model.approx_totals(method='fd')``), what a user without analytic
+        partials would run; for speed comparisons (``benchmarks/optimization_speed.py``).
 
     Returns
     -------
@@ -175,6 +180,8 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
         raise ValueError(f"parameterization must be one of {PARAMETERIZATIONS}, got {parameterization!r}")
     if scaling not in SCALINGS:
         raise ValueError(f"scaling must be one of {SCALINGS}, got {scaling!r}")
+    if approx_totals not in (None, "fd"):
+        raise ValueError(f"approx_totals must be None (analytic) or 'fd', got {approx_totals!r}")
     tol = DEFAULT_TOL[optimizer] if tol is None else float(tol)
     maxiter = DEFAULT_MAXITER[optimizer] if maxiter is None else int(maxiter)
     driver = make_driver(optimizer, tol, maxiter, print_level)
@@ -190,6 +197,8 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     prob.model.add_objective("energy_loss_ratio")
     prob.model.add_constraint("thrust_residual", equals=0.0)
     prob.driver = driver
+    if approx_totals is not None:
+        prob.model.approx_totals(method=approx_totals)
     # Two responses and 20-60 design variables: reverse mode needs two linear solves per gradient.
     prob.setup(mode="rev")
     prob.final_setup()

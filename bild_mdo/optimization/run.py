@@ -15,6 +15,7 @@ import time
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bem.flow_states import FLOW_STATE_NAMES, INVALID_STATES
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS
 from bild_mdo.optimization.problem import build_optimization_problem, set_optimization_case
@@ -134,6 +135,14 @@ class OptimizationResult:
         ``T/T* - 1`` at the optimum.
     optimizer : str
         Optimiser name.
+    flow_state : ndarray of int, shape (nr,)
+        Flow-state code of every station at the optimum (:mod:`bild_mdo.bem.flow_states`).
+    invalid_stations : int
+        Stations of the optimum in a flow state the momentum model does not
+        represent (:data:`~bild_mdo.bem.flow_states.INVALID_STATES`).  The
+        optimisation ignores such states at its trial points; a converged
+        optimum with ``invalid_stations > 0`` is reported (``status`` says so)
+        but not trusted by :attr:`flow_valid`.
     """
 
     converged: bool
@@ -147,6 +156,13 @@ class OptimizationResult:
     performance: dict
     thrust_error: float
     optimizer: str
+    flow_state: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0, dtype=int))
+    invalid_stations: int = 0
+
+    @property
+    def flow_valid(self):
+        """True when every station of the optimum is in a valid flow state."""
+        return self.invalid_stations == 0
 
 
 def _driver_outcome(prob, optimizer):
@@ -201,11 +217,36 @@ def run_optimization(prob):
     performance = {name: float(prob.get_val(name)[0]) for name in RESULT_QUANTITIES}
     converged = bool(success and abs(thrust_error) <= THRUST_TOLERANCE
                      and all(np.isfinite(v) for v in performance.values()))
+    # As for the performance above: the model holds the last point the driver evaluated, the optimum it returns.
+    flow_state = np.rint(np.real(prob.get_val("bem.flow_state")[0])).astype(int)
+    invalid = int(np.isin(flow_state, INVALID_STATES).sum())
+    if invalid:
+        status = f"{status}; {invalid_flow_text(flow_state)}"
     return OptimizationResult(
         converged=converged, status=status, iterations=iterations,
         model_evaluations=int(prob.driver.iter_count), wall_time=wall_time, setup_time=0.0,
         chord=prob.get_val("chord", units="m")[0].copy(), twist=prob.get_val("twist", units="rad")[0].copy(),
-        performance=performance, thrust_error=thrust_error, optimizer=optimizer)
+        performance=performance, thrust_error=thrust_error, optimizer=optimizer, flow_state=flow_state,
+        invalid_stations=invalid)
+
+
+def invalid_flow_text(flow_state):
+    """One phrase on the stations of a design in an invalid flow state, e.g. ``'2 of 30 stations ... (4: ...)'``.
+
+    Parameters
+    ----------
+    flow_state : array_like of int, shape (nr,)
+        Flow-state codes of :mod:`bild_mdo.bem.flow_states`.
+
+    Returns
+    -------
+    str
+    """
+    flow_state = np.asarray(flow_state, dtype=int)
+    bad = np.flatnonzero(np.isin(flow_state, INVALID_STATES))
+    names = sorted({FLOW_STATE_NAMES[int(code)] for code in flow_state[bad]})
+    return (f"{bad.size} of {flow_state.size} stations in an invalid BEM flow state at the optimum "
+            f"({', '.join(names)}; stations {bad.tolist()})")
 
 
 def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0, *, problem=None, restarts=0,

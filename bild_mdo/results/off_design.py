@@ -1,4 +1,4 @@
-"""Off-design performance of a fixed rotor geometry: a vectorised BEM sweep over J or rpm.
+"""Off-design performance of a fixed rotor geometry: a vectorised BEM sweep over J, rpm or collective pitch.
 
 :func:`off_design_sweep` analyses one blade (a BILD design, a geometry file or
 arrays) at many operating points in ONE call of
@@ -34,11 +34,11 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo import validation
-from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.bem.analyze import BEMResult, analyze_rotor
 from bild_mdo.bem.flow_states import INVALID_STATES, ON_INVALID, PROPELLER, BEMStateWarning, describe_invalid
 from bild_mdo.bem.metrics import METRICS
 from bild_mdo.constants import RPM_TO_REV_PER_S
+from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.io.files import read_geometry
 from bild_mdo.io.geometry import RotorGeometry, as_geometry, unit_key
 from bild_mdo.io.qprop import polar_from_qprop
@@ -60,9 +60,12 @@ class OffDesignResult:
     Attributes
     ----------
     sweep : str
-        ``'advance_ratio'`` or ``'rpm'``: the swept variable.
+        ``'advance_ratio'``, ``'rpm'`` or ``'collective_pitch'``: the swept variable
+        (a J or rpm sweep at several pitches repeats it for each pitch).
     advance_ratio, v_axial, rpm : ndarray
         Operating points: J = V/(nD) (-), axial velocity (m/s), rotor speed (rpm).
+    collective_pitch : ndarray
+        Collective pitch (rad) added to the twist, per point (``collective_pitch_deg`` in degrees).
     performance : dict
         Metric name -> array (units in :attr:`UNITS`): T (N), Q (N m), P (W), C_T, C_Q, C_P, eta, FM, ...
     geometry : RotorGeometry
@@ -79,6 +82,9 @@ class OffDesignResult:
     flow_state : ndarray of int or None
         BEM flow-state code of every station, shape ``(n, nr)``
         (:mod:`bild_mdo.bem.flow_states`); -1 at failed points.
+    mach : ndarray or None
+        Local Mach number of every station, shape ``(n, nr)``; NaN at failed
+        points.  The tip Mach number ``tip_mach`` is one of the metrics.
 
     Notes
     -----
@@ -100,17 +106,28 @@ class OffDesignResult:
     bem: BEMResult | None = dataclasses.field(default=None, repr=False)
     status: np.ndarray | None = dataclasses.field(default=None, repr=False)
     flow_state: np.ndarray | None = dataclasses.field(default=None, repr=False)
+    mach: np.ndarray | None = dataclasses.field(default=None, repr=False)
+    collective_pitch: np.ndarray | None = None
 
     def __post_init__(self):
         if self.status is None:
             object.__setattr__(self, "status", np.full(self.rpm.size, "ok", dtype=object))
+        if self.collective_pitch is None:
+            object.__setattr__(self, "collective_pitch", np.zeros(self.rpm.size))
+
+    @property
+    def collective_pitch_deg(self):
+        """Collective pitch of every point (deg)."""
+        return np.degrees(self.collective_pitch)
 
     @property
     def ok(self):
         """ndarray of bool: True at the points that were analysed (``status == 'ok'``)."""
         return np.asarray(self.status == "ok", dtype=bool)
 
-    UNITS: ClassVar[dict] = {**POINT_UNITS, **{metric.name: metric.units for metric in METRICS}}
+    # The pitch comes last, so the columns of the CSV table before it keep their places.
+    UNITS: ClassVar[dict] = {**POINT_UNITS, **{metric.name: metric.units for metric in METRICS},
+                             "collective_pitch": "rad"}
 
     def __getattr__(self, name):
         # Only called for names that are not fields: the performance metrics.
@@ -138,12 +155,13 @@ class OffDesignResult:
 
     @property
     def max_efficiency_point(self):
-        """``{'advance_ratio', 'v_axial', 'rpm', 'efficiency', 'thrust', 'power'}`` at the best point, or None."""
+        """``{'advance_ratio', 'v_axial', 'rpm', 'collective_pitch', 'efficiency', 'thrust', 'power'}`` at the
+        best point, or None."""
         i = self.max_efficiency_index
         if i is None:
             return None
         return {name: float(getattr(self, name)[i])
-                for name in ("advance_ratio", "v_axial", "rpm", "efficiency", "thrust", "power")}
+                for name in ("advance_ratio", "v_axial", "rpm", "collective_pitch", "efficiency", "thrust", "power")}
 
     def to_dict(self):
         """The per-point arrays (units in :attr:`UNITS`) and the sweep metadata."""
@@ -180,16 +198,26 @@ class OffDesignResult:
             lines.append("maximum efficiency: none (no point with forward speed and positive thrust)")
         else:
             lines.append(f"maximum efficiency: eta = {best['efficiency']:.4f} at J = {best['advance_ratio']:.4f} "
-                         f"(V = {best['v_axial']:.3f} m/s, {best['rpm']:.1f} rpm)")
+                         f"(V = {best['v_axial']:.3f} m/s, {best['rpm']:.1f} rpm"
+                         + (f", pitch {np.degrees(best['collective_pitch']):.3f} deg)" if np.any(self.collective_pitch)
+                            else ")"))
         return "\n".join(lines)
 
 
 def _blade(geometry, design):
     """The RotorGeometry to analyse (``design`` picks one of a batch or a multi-design JSON file)."""
     if isinstance(geometry, DesignResult):
-        if geometry.is_batch and len(geometry) > 1 and design is None:
-            raise ValueError(f"the DesignResult holds {len(geometry)} designs; choose one with design=i")
+        count = len(geometry)
+        if design is None:
+            if geometry.is_batch and count > 1:
+                raise ValueError(f"the DesignResult holds {count} designs; choose one with design=i")
+            return geometry.geometry(None)
+        design = validation.integer("design", design, minimum=-count)
+        if design >= count:
+            raise ValueError(f"design must be an index of the DesignResult's {count} design(s), got {design}")
         return geometry.geometry(design)
+    if design is not None:
+        design = validation.integer("design", design, minimum=0)
     if isinstance(geometry, (str, Path)):
         return read_geometry(geometry, design=0 if design is None else design)
     return as_geometry(geometry, index=design)
@@ -199,7 +227,7 @@ def _default_polar(geometry):
     if geometry.polar is not None:
         return geometry.polar
     if geometry.airfoil:
-        return resolve_polar(geometry.airfoil)
+        return resolve_airfoil(geometry.airfoil)
     if geometry.polar_coefficients:
         return polar_from_qprop(geometry.polar_coefficients)
     raise ValueError("the geometry names no airfoil; pass polar= (a Polar or a built-in airfoil name)")
@@ -213,35 +241,38 @@ def _sweep_points(name, values, check, units):
 
 
 def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm=None, altitude=None,
-                     polar=None, loss_model=None, design=None, on_invalid="warn"):
-    """BEM analysis of one fixed blade over a range of advance ratios or rotor speeds, in one vectorised run.
+                     polar=None, loss_model=None, design=None, on_invalid="warn", collective_pitch=0.0):
+    """BEM analysis of one fixed blade over a range of advance ratios, rotor speeds or collective pitches.
 
-    A point whose analysis fails (no torque at all, or, with
-    ``on_invalid='raise'``, stations outside the momentum model's flow states)
-    does not stop the sweep: it is recorded in ``result.status`` with its
-    reason and its values are NaN.  The sweep is one vectorised run; only
-    where it raises (no torque at some point) are the failing points
-    isolated by splitting the batch in halves (a few more runs).
+    All points run in one vectorised analysis.  A point whose analysis fails
+    (no torque at all, or, with ``on_invalid='raise'``, stations outside the
+    momentum model's flow states) does not stop the sweep: it is recorded in
+    ``result.status`` with its reason and its values are NaN.  Only where the
+    analysis raises (no torque at some point) are the failing points isolated
+    by splitting the batch in halves (a few more runs).
 
     Parameters
     ----------
     geometry : DesignResult, RotorGeometry, dict or path
         The blade: a single BILD design (or ``design=i`` of a batch), a
         geometry, a dict of :class:`~bild_mdo.io.geometry.RotorGeometry` fields,
-        or a CSV/JSON/QPROP file.
+        or a CSV/JSON/QPROP file (its airfoil comes with it).
     advance_ratios : array_like, optional
         Sweep J = V/(nD) (-, >= 0) at rotor speed ``rpm``.
     rpms : array_like, optional
         Sweep the rotor speed (rpm, > 0) at axial velocity ``v_axial``.
-        Give exactly one of ``advance_ratios`` and ``rpms``.
+        Give at most one of ``advance_ratios`` and ``rpms``; with neither,
+        ``collective_pitch`` must be a list (a pitch sweep at the design point).
     v_axial : float, optional
-        Axial velocity (m/s) of an rpm sweep; default the design's, else 0.
+        Axial velocity (m/s) of an rpm or pitch sweep; default the design's, else 0.
     rpm : float, optional
-        Rotor speed (rpm) of an advance-ratio sweep; default the design's.
+        Rotor speed (rpm) of an advance-ratio or pitch sweep; default the design's.
     altitude : float, optional
         ISA altitude (m); default the design's, else 0.
     polar : Polar or str, optional
-        Default: the design's polar, the geometry's airfoil or its QPROP airfoil lines.
+        Default: the polar the geometry carries (a design's polar, a file's),
+        its airfoil name, or its QPROP airfoil lines.  Any text
+        :func:`~bild_mdo.io.airfoil.resolve_airfoil` accepts.
     loss_model : str, optional
         Default: the design's.
     design : int, optional
@@ -250,6 +281,11 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
         Stations in a flow state the momentum model does not represent
         (:func:`~bild_mdo.bem.analyze.analyze_rotor`): one warning naming them
         (default), their points recorded as failed, or nothing.
+    collective_pitch : float or array_like
+        Collective pitch (rad) added to the twist at every station.  A list of
+        pitches sweeps them: alone, at the design's J and rpm; with
+        ``advance_ratios`` or ``rpms``, every pitch at every point (the
+        pitch varies slowest: one curve per pitch).
 
     Returns
     -------
@@ -260,44 +296,64 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     ValueError
         For invalid inputs.
     """
-    if (advance_ratios is None) == (rpms is None):
-        raise ValueError("give exactly one of advance_ratios (J sweep) and rpms (rotor-speed sweep)")
+    pitches = np.atleast_1d(validation.real_array("collective_pitch", collective_pitch, units="rad",
+                                                  axes=("pitch",)))
+    pitch_sweep = np.ndim(collective_pitch) == 1
+    if advance_ratios is not None and rpms is not None:
+        raise ValueError("give at most one of advance_ratios (J sweep) and rpms (rotor-speed sweep)")
+    if advance_ratios is None and rpms is None and not pitch_sweep:
+        raise ValueError("give advance_ratios (J sweep), rpms (rotor-speed sweep) or a list of collective_pitch "
+                         "values (pitch sweep)")
+    if pitches.size == 0:
+        raise ValueError("collective_pitch must be a number or a non-empty 1-D list of values in rad")
     validation.choice("on_invalid", on_invalid, ON_INVALID)
     geom = _blade(geometry, design)
     point = geom.design_point
-    polar = _default_polar(geom) if polar is None else resolve_polar(polar)
+    polar = _default_polar(geom) if polar is None else resolve_airfoil(polar)
     altitude = point.get("altitude", 0.0) if altitude is None else float(validation.real_array("altitude", altitude,
                                                                                                units="m", ndim=(0,)))
     loss_model = geom.loss_model if loss_model is None else loss_model
     revs_per_diameter = RPM_TO_REV_PER_S * 2.0 * geom.radius  # n D per rpm
 
-    if advance_ratios is not None:
-        j = _sweep_points("advance_ratios", advance_ratios, validation.non_negative, None)
+    if rpms is None:
+        j = (_sweep_points("advance_ratios", advance_ratios, validation.non_negative, None)
+             if advance_ratios is not None else None)
         if rpm is None:
             if "rpm" not in point:
-                raise ValueError("the geometry has no design rpm; give the rotor speed of the advance-ratio "
-                                 "sweep (rpm=..., bild-mdo analyze --at-rpm)")
+                raise ValueError("the geometry has no design rpm; give the rotor speed of the sweep (rpm=..., "
+                                 "bild-mdo analyze --at-rpm)")
             rpm = point["rpm"]
-        speeds = np.full(j.shape, float(validation.positive("rpm", rpm, units="rpm", ndim=(0,))))
+        rpm = float(validation.positive("rpm", rpm, units="rpm", ndim=(0,)))
+        if j is None:  # a pitch sweep at the design point: its J, or its axial velocity
+            v = point.get("v_axial", 0.0) if v_axial is None else v_axial
+            v = float(validation.non_negative("v_axial", v, units="m/s", ndim=(0,)))
+            j = np.array([v / (rpm * revs_per_diameter)])
+        speeds = np.full(j.shape, rpm)
         velocities = j * speeds * revs_per_diameter
-        sweep = "advance_ratio"
+        sweep = "advance_ratio" if advance_ratios is not None else "collective_pitch"
     else:
         speeds = _sweep_points("rpms", rpms, validation.positive, "rpm")
         v = point.get("v_axial", 0.0) if v_axial is None else v_axial
         velocities = np.full(speeds.shape, float(validation.non_negative("v_axial", v, units="m/s", ndim=(0,))))
         j = velocities / (speeds * revs_per_diameter)
         sweep = "rpm"
+    # Every pitch at every operating point, the pitch varying slowest.
+    count = pitches.size * speeds.size
+    validation.memory_bound("sweep points", count, geom.num_radial, hint="use fewer points or pitches")
+    pitch = np.repeat(pitches, speeds.size)
+    speeds, velocities, j = (np.tile(a, pitches.size) for a in (speeds, velocities, j))
 
     def run(points, mode):
         return analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, speeds[points],
                              velocities[points], geom.num_blades, polar, altitude=altitude, loss_model=loss_model,
-                             radii=geom.radii, on_invalid=mode)
+                             radii=geom.radii, on_invalid=mode, collective_pitch=pitch[points])
 
-    r_over_r = np.broadcast_to(np.asarray(geom.radii) / geom.radius, (speeds.size, np.size(geom.radii)))
-    bem, performance, flow_state, status = _analyze_points(run, speeds.size, on_invalid, r_over_r)
+    r_over_r = np.broadcast_to(np.asarray(geom.radii) / geom.radius, (count, np.size(geom.radii)))
+    bem, performance, stations, status = _analyze_points(run, count, on_invalid, r_over_r)
     return OffDesignResult(sweep=sweep, advance_ratio=j, v_axial=velocities, rpm=speeds, performance=performance,
                            geometry=geom, altitude=altitude, design_advance_ratio=point.get("advance_ratio"), bem=bem,
-                           status=status, flow_state=flow_state)
+                           status=status, flow_state=stations["flow_state"], mach=stations["mach"],
+                           collective_pitch=pitch)
 
 
 def _one_line(message):
@@ -309,14 +365,17 @@ def _one_line(message):
 def _analyze_points(run, count, on_invalid, r_over_r):
     """Analyse every point in one run; isolate points that raise by bisection.
 
-    Returns ``(bem or None, performance, flow_state, status)``.  Stations in
-    invalid flow states are found from ``flow_state`` (one run with
-    ``on_invalid='ignore'``): one warning for ``'warn'``, failed points for
-    ``'raise'``.
+    Returns ``(bem or None, performance, stations, status)``, ``stations`` the
+    per-station ``flow_state`` (-1 at failed points) and ``mach`` (NaN there),
+    shape ``(count, nr)``.  Stations in invalid flow states are found from
+    ``flow_state`` (one run with ``on_invalid='ignore'``): one warning for
+    ``'warn'``, failed points for ``'raise'``.
     """
     status = np.full(count, "ok", dtype=object)
     performance = {metric.name: np.full(count, np.nan) for metric in METRICS}
-    flow_state, bem = None, None
+    stations = {"flow_state": np.full((count, r_over_r.shape[1]), -1, dtype=int),
+                "mach": np.full((count, r_over_r.shape[1]), np.nan)}
+    bem = None
     pending = [np.arange(count)]
     while pending:
         points = pending.pop()
@@ -328,14 +387,13 @@ def _analyze_points(run, count, on_invalid, r_over_r):
             else:
                 pending += [points[: points.size // 2], points[points.size // 2:]]
             continue
-        states = np.atleast_2d(result.flow_state)
-        if flow_state is None:
-            flow_state = np.full((count, states.shape[1]), -1, dtype=int)
-        flow_state[points] = states
+        for name, values in stations.items():
+            values[points] = np.atleast_2d(getattr(result, name))
         for name, values in performance.items():
             values[points] = getattr(result, name)
         bem = result if points.size == count else None
-    if flow_state is not None and on_invalid != "ignore":
+    flow_state = stations["flow_state"]
+    if on_invalid != "ignore":
         invalid = np.flatnonzero(np.any(np.isin(flow_state, INVALID_STATES), axis=1))
         if on_invalid == "warn" and invalid.size:
             warnings.warn(describe_invalid(np.where(flow_state < 0, PROPELLER, flow_state), r_over_r),
@@ -345,5 +403,6 @@ def _analyze_points(run, count, on_invalid, r_over_r):
                 status[i] = _one_line(describe_invalid(flow_state[i:i + 1], r_over_r[i:i + 1]))
             for values in performance.values():
                 values[invalid] = np.nan
+            stations["mach"][invalid] = np.nan
             bem = None
-    return bem, performance, flow_state, status
+    return bem, performance, stations, status

@@ -21,17 +21,18 @@ from bild_mdo.bem.metrics import METRICS_BY_NAME
 
 #: Operating-point and sizing columns: name -> title (SI units; rpm in rpm).
 INPUT_TITLES = {"advance_ratio": "J [-]", "v_axial": "V [m/s]", "rpm": "rpm", "radius": "R [m]",
-                "ref_chord": "c_ref [m]", "altitude": "alt [m]"}
+                "ref_chord": "c_ref [m]", "altitude": "alt [m]", "collective_pitch_deg": "pitch [deg]"}
 
 #: Columns of a batch of designs: inputs, then metrics.
 DESIGN_BATCH_COLUMNS = ("advance_ratio", "v_axial", "rpm", "radius", "ref_chord", "altitude", "thrust",
                         "torque", "power", "efficiency", "figure_of_merit", "thrust_coefficient", "solidity")
 
 #: Operating-point columns of an off-design sweep (printed for failed points too).
-POINT_TITLES = ("advance_ratio", "v_axial", "rpm")
+POINT_TITLES = ("advance_ratio", "v_axial", "rpm", "collective_pitch_deg")
 
-#: Columns of an off-design sweep and their number formats.
-SWEEP_COLUMNS = {"advance_ratio": ".4f", "v_axial": ".3f", "rpm": ".1f", "thrust": ".5g", "torque": ".5g",
+#: Columns of an off-design sweep and their number formats (the pitch only where some point has one).
+SWEEP_COLUMNS = {"advance_ratio": ".4f", "v_axial": ".3f", "rpm": ".1f", "collective_pitch_deg": ".3f",
+                 "thrust": ".5g", "torque": ".5g",
                  "power": ".5g", "efficiency": ".4f", "figure_of_merit": ".4f", "thrust_coefficient": ".5f",
                  "torque_coefficient": ".6f", "power_coefficient": ".5f"}
 
@@ -90,7 +91,7 @@ _SINGLE_DESIGN_ROWS = (
     ("energy loss E", "energy_loss", "kW"), ("efficiency eta", "efficiency", "-"),
     ("figure of merit FM", "figure_of_merit", "-"), ("C_T", "thrust_coefficient", "-"),
     ("C_Q", "torque_coefficient", "-"), ("C_P", "power_coefficient", "-"),
-    ("blade loading C_T/sigma_r", "blade_loading", "-"),
+    ("blade loading C_T/sigma_r", "blade_loading", "-"), ("tip Mach number", "tip_mach", "-"),
 )
 
 
@@ -151,13 +152,27 @@ def single_design_table(design):
             lines.append(f"{label}:")
         elif isinstance(quantity, tuple):
             cl_star, cd_star = (getattr(design, name) for name in quantity)
-            lines.append(f"  {label:<32s} {f'{cl_star:.4f}, {cd_star:.5f}':>14s} {units}")
+            text = f"{_number(cl_star, '.4f')}, {_number(cd_star, '.5f')}"
+            lines.append(f"  {label:<32s} {text:>14s} {units}" + _per_station(cl_star))
         elif quantity in PROPULSIVE_ONLY and not useful:
             lines.append(f"  {label:<32s} {'n/a':>14s} {units}  (needs T > 0 and P > 0)")
-        else:
+        elif hasattr(design, quantity):  # tip_mach only where the model outputs it
             scale = METRICS_BY_NAME[quantity].display_scale if units == "kW" else 1.0
-            lines.append(f"  {label:<32s} {getattr(design, quantity) * scale:>14.6g} {units}")
+            value = np.asarray(getattr(design, quantity)) * scale
+            lines.append(f"  {label:<32s} {_number(value, '.6g'):>14s} {units}" + _per_station(value))
     return lines
+
+
+def _number(value, fmt):
+    """A number, or the range ``lo..hi`` of a per-station array (a blade with several airfoils)."""
+    value = np.asarray(value)
+    if value.ndim == 0:
+        return f"{float(value):{fmt}}"
+    return f"{np.min(value):{fmt}}..{np.max(value):{fmt}}"
+
+
+def _per_station(value):
+    return "  (per station: several airfoils along the span)" if np.ndim(value) else ""
 
 
 def station_table(design):
@@ -173,7 +188,9 @@ def station_table(design):
 
 def sweep_table(result):
     """One row per operating point of an off-design sweep."""
-    columns = [(name, *column(name), fmt) for name, fmt in SWEEP_COLUMNS.items()]
+    pitched = np.any(np.asarray(getattr(result, "collective_pitch", 0.0)) != 0.0)
+    columns = [(name, *column(name), fmt) for name, fmt in SWEEP_COLUMNS.items()
+               if pitched or name != "collective_pitch_deg"]
     lines = [" ".join(f"{title:>10}" for _, title, _, _ in columns)]
     useful, status = propulsive(result), _statuses(result)
     for i in range(len(result)):

@@ -22,6 +22,7 @@ from bild_mdo.bild.problem import bild_problem
 from bild_mdo.optimization.problem import DEFAULT_MAXITER, DEFAULT_TOL, build_optimization_problem, make_driver
 from bild_mdo.optimization.run import optimize_rotor
 
+from bild_mdo.airfoil.text import sweep_polar
 from .cases import CaseSetupError
 
 #: Inputs that must be equal for cases to share one batched BILD model.
@@ -104,7 +105,7 @@ def _bild_group(cases, indices, results):
     batch = [cases[i] for i in indices]
     num_radial, num_blades, airfoil = (batch[0].inputs[k] for k in _MODEL_KEYS)
     try:
-        prob = bild_problem(len(batch), int(num_radial), int(num_blades), airfoil)
+        prob = bild_problem(len(batch), int(num_radial), int(num_blades), sweep_polar(airfoil))
     except (ValueError, TypeError) as exc:
         raise CaseSetupError(f"the BILD model cannot be set up for {num_blades} blades, {num_radial} "
                              f"stations and airfoil {airfoil!r}: {exc}") from exc
@@ -148,7 +149,7 @@ def time_single_bild_design(case, repeats=20):
         Seconds per ``run_model`` of a set-up single-design problem.
     """
     inputs = case.inputs
-    prob = bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
+    prob = bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), sweep_polar(inputs["airfoil"]))
     _set_bild_inputs(prob, [case])
     prob.run_model()
     best = np.inf
@@ -164,8 +165,8 @@ def _cached_problem(inputs, optimizer, parameterization, tol):
     prob = _PROBLEMS.get(key)
     if prob is None:
         prob = build_optimization_problem(optimizer=optimizer, parameterization=parameterization, tol=tol,
-                                          num_radial=int(inputs["num_radial"]),
-                                          num_blades=int(inputs["num_blades"]), polar=inputs["airfoil"])
+                                          num_radial=int(inputs["num_radial"]), num_blades=int(inputs["num_blades"]),
+                                          polar=sweep_polar(inputs["airfoil"]))
         _PROBLEMS[key] = prob
     return prob
 

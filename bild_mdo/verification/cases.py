@@ -95,7 +95,7 @@ class Case:
         ``advance_ratio`` (-), ``radius`` (m), ``altitude`` (m),
         ``reference_chord`` (m), ``rpm`` (rpm), ``v_axial`` (m/s, = J n D),
         ``reference_radius`` (m), ``hub_radius`` (m), ``num_blades`` (-),
-        ``num_radial`` (-), ``airfoil`` (name).
+        ``num_radial`` (-), ``airfoil`` (text of :attr:`SweepSpec.airfoil`).
     optimizer : str
         Name of the NLP optimiser the reference optimisation should use
         (``'ipopt'``, ``'slsqp'`` or ``'snopt'``).
@@ -134,7 +134,14 @@ class SweepSpec:
     num_radial : int
         Number of radial stations.
     airfoil : str
-        Airfoil name understood by the BILD model and the optimisation.
+        The airfoil of BILD, the optimisation and the optimality check, as text
+        (stored in every row and part of the fingerprint): anything
+        :func:`~bild_mdo.airfoil.builtin.resolve_polar` accepts (built-in name,
+        NACA designation, polar files or folder, coordinates file), a polar
+        frozen at one Reynolds number (``'naca4412@re=1e6'``) or a spanwise set
+        (``'0.2:naca4415;1:naca4412'``); see
+        :func:`~bild_mdo.airfoil.text.sweep_polar`.  A path is stored
+        as written: rerun a sweep from the same folder.
     optimizer : str
         Optimiser used for the reference BEM optimisation; part of the
         fingerprint so results of different optimisers are never mixed.
@@ -174,6 +181,8 @@ class SweepSpec:
             )
         if int(self.num_blades) < 1 or int(self.num_radial) < 2:
             raise ValueError("num_blades must be >= 1 and num_radial >= 2")
+        if not isinstance(self.airfoil, str) or not self.airfoil.strip():
+            raise ValueError(f"airfoil must be a non-empty string (a store keeps it as text), got {self.airfoil!r}")
         if self.optimizer not in OPTIMIZERS:
             raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {self.optimizer!r}")
 

@@ -18,7 +18,8 @@ it says nothing about optimality.  The fair comparison, and the paper's intent
 :func:`trimmed_bild_energy_loss` does step 2 for all cases in one vectorised
 BEM analysis per iteration; :func:`optimality_check` does step 3 and sums up.
 The BEM set-up is the one the optimisation uses (``loss_model='tip_hub'``,
-ISA at the case's altitude, the built-in polar named by the case) at the
+ISA at the case's altitude, the polar the case's airfoil text names:
+:func:`~bild_mdo.airfoil.text.sweep_polar`) at the
 stations BILD designs at: the midpoints of ``num_radial`` equal annuli from hub
 to tip, which are also :func:`~bild_mdo.bem.analyze.analyze_rotor`'s default
 stations.
@@ -34,10 +35,12 @@ import math
 
 import numpy as np
 
-from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.bem.analyze import analyze_rotor
+from bild_mdo.bem.flow_states import INVALID_STATES
 from bild_mdo.constants import RPM_TO_REV_PER_S
+
+from bild_mdo.airfoil.text import sweep_polar
 
 #: Loss model of the optimisation problem the optimum comes from.
 LOSS_MODEL = "tip_hub"
@@ -71,6 +74,9 @@ class BildTrim:
         ``|thrust_residual| <= tol``.
     iterations : int
         BEM analyses per configuration batch after the first (the largest batch count).
+    invalid_stations : ndarray of int
+        Stations of the trimmed design in an invalid BEM flow state
+        (:data:`~bild_mdo.bem.flow_states.INVALID_STATES`), where its loads are not reliable.
     """
 
     case_ids: np.ndarray
@@ -80,6 +86,7 @@ class BildTrim:
     untrimmed_thrust_error: np.ndarray
     converged: np.ndarray
     iterations: int
+    invalid_stations: np.ndarray = None
 
 
 def _row_text(row):
@@ -116,7 +123,7 @@ def _check_rows(rows):
 def _trim_batch(rows, tol, max_iter, first_step, max_step):
     """Safeguarded secant iteration on the pitch offset of every row at once (one configuration)."""
     _, num_blades, airfoil = (rows[0][k] for k in _MODEL_KEYS)
-    polar = resolve_polar(airfoil)
+    polar = sweep_polar(airfoil)
     chord = np.array([row["bild_chord"] for row in rows], dtype=float)
     twist = np.array([row["bild_twist"] for row in rows], dtype=float)
     case = {k: np.array([row[k] for row in rows], dtype=float) for k in _CASE_KEYS}
@@ -125,10 +132,13 @@ def _trim_batch(rows, tol, max_iter, first_step, max_step):
     def analyse(offset):
         result = analyze_rotor(chord, twist + offset[:, None], case["radius"], case["hub_radius"], case["rpm"],
                                case["v_axial"], int(num_blades), polar, altitude=case["altitude"],
-                               loss_model=LOSS_MODEL)
+                               loss_model=LOSS_MODEL, on_invalid="ignore")
+        # The secant steps may pass through invalid flow states; the trimmed design's are counted below.
+        invalid[:] = np.isin(np.rint(np.real(result.flow_state)), INVALID_STATES).sum(axis=-1)
         return np.asarray(result.thrust) / target - 1.0, np.asarray(result.energy_loss)
 
     size = len(rows)
+    invalid = np.zeros(size, dtype=int)
     x = np.zeros(size)
     f, energy = analyse(x)
     untrimmed = f.copy()
@@ -159,7 +169,7 @@ def _trim_batch(rows, tol, max_iter, first_step, max_step):
         f, energy = analyse(x)
         iterations += 1
     return dict(energy_loss=energy, thrust_residual=f, pitch_offset=x, untrimmed_thrust_error=untrimmed,
-                converged=np.abs(f) <= tol, iterations=iterations)
+                converged=np.abs(f) <= tol, iterations=iterations, invalid_stations=invalid)
 
 
 def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, max_step=np.radians(2.0)):
@@ -208,6 +218,7 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     size = len(rows)
     out = {name: np.full(size, np.nan) for name in ("energy_loss", "thrust_residual", "pitch_offset",
                                                     "untrimmed_thrust_error")}
+    out["invalid_stations"] = np.zeros(size, dtype=int)
     converged = np.zeros(size, dtype=bool)
     iterations = 0
     groups = {}
@@ -256,6 +267,9 @@ class OptimalityCheck:
         Largest ``|offset|`` of the trim (rad).
     max_trim_residual : float
         Largest ``|T/T* - 1|`` after the trim over the compared cases (-).
+    invalid_flow_ids : list of int
+        Compared cases whose trimmed BILD design has stations in an invalid
+        BEM flow state (its E_trim is less reliable there).
     """
 
     tolerance: float
@@ -271,6 +285,7 @@ class OptimalityCheck:
     max_untrimmed_thrust_error: float
     max_pitch_offset: float
     max_trim_residual: float
+    invalid_flow_ids: list = dataclasses.field(default_factory=list)
 
     @property
     def num_violations(self):
@@ -301,6 +316,9 @@ class OptimalityCheck:
             shown = ", ".join(f"{cid} ({100.0 * m:+.4f} %)" for cid, m in self.violations[:10])
             more = "" if len(self.violations) <= 10 else f" and {len(self.violations) - 10} more"
             lines.append(f"  Violations (case, margin): {shown}{more}.")
+        if self.invalid_flow_ids:
+            lines.append(f"  Trimmed BILD designs with stations in an invalid BEM flow state: cases "
+                         f"{self.invalid_flow_ids[:10]}{'' if len(self.invalid_flow_ids) <= 10 else ' ...'}.")
         if self.trim_failed_ids:
             lines.append(f"  Trim did not converge (not compared): cases {self.trim_failed_ids[:10]}"
                          f"{'' if len(self.trim_failed_ids) <= 10 else ' ...'}.")
@@ -375,4 +393,6 @@ def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None):
         max_untrimmed_thrust_error=stat(np.max, np.abs(trim.untrimmed_thrust_error[ok])),
         max_pitch_offset=stat(np.max, np.abs(trim.pitch_offset[ok])),
         max_trim_residual=stat(np.max, np.abs(trim.thrust_residual[ok])),
+        invalid_flow_ids=[] if trim.invalid_stations is None else
+        [int(cid) for cid in ids[ok][np.asarray(trim.invalid_stations)[ok] > 0]],
     )

@@ -30,6 +30,7 @@ collected and shown once per sweep (:mod:`~bild_mdo.verification.warning_relay`)
 """
 import functools
 import os
+import re
 import sys
 import time
 import traceback
@@ -38,8 +39,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import openmdao.api as om
-from tqdm import tqdm
 
+from bild_mdo.airfoil.text import DEFAULT_AIRFOIL
 from .cases import CaseSetupError, check_workers
 from .executors import check_picklable, connect_dask, run_tasks
 from .optimality import optimality_check
@@ -334,6 +335,9 @@ def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress
 
 def _progress_bar(total, stream):
     """A tqdm bar of the optimisations: redrawn on a terminal, a plain line every 30 s in a log."""
+    # Imported here: the command line imports this module for every subcommand, and only a sweep draws a bar.
+    from tqdm import tqdm
+
     stream = sys.stderr if stream is None else stream
     isatty = getattr(stream, "isatty", None)
     tty = bool(isatty and isatty())
@@ -351,8 +355,19 @@ def _store(store, row, result, bar):
 
 
 def default_db_path(spec):
-    """Default results file name for a sweep: ``bild-verify-L{levels}-{optimizer}.sqlite`` in the working directory."""
-    return f"bild-verify-L{spec.levels}-{spec.optimizer}.sqlite"
+    """Default results file name of a sweep, in the working directory.
+
+    ``bild-verify-L{levels}-{optimizer}.sqlite`` for the default airfoil,
+    ``bild-verify-L{levels}-{optimizer}-{airfoil}.sqlite`` for another one
+    (the airfoil text with every run of other characters than letters,
+    digits, ``.`` and ``=`` replaced by ``-``, at most 40 characters), so
+    that sweeps of different airfoils do not meet in one file.
+    """
+    name = f"bild-verify-L{spec.levels}-{spec.optimizer}"
+    if spec.airfoil.strip().lower() != DEFAULT_AIRFOIL:
+        slug = re.sub(r"[^a-z0-9.=]+", "-", spec.airfoil.strip().lower()).strip("-.")[:40].strip("-.")
+        name += f"-{slug or 'airfoil'}"
+    return f"{name}.sqlite"
 
 
 def format_duration(seconds):

@@ -274,7 +274,7 @@ class ResultsStore:
                              "or choose another --db path") from exc
 
     def meta(self):
-        """Return the meta table as a dict of strings (schema_version, sweep_fingerprint, sweep_spec, created_at, ...)."""
+        """Return the meta table as a dict of strings (schema_version, sweep_fingerprint, sweep_spec, ...)."""
         return dict(self._read(f"SELECT key, value FROM {META_TABLE}"))
 
     def write(self, row):

@@ -13,8 +13,6 @@ import io
 import re
 import warnings
 
-from tqdm import tqdm
-
 # Warnings that differ only in their numbers (the Reynolds range one worker saw) are one warning.
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 
@@ -91,7 +89,8 @@ class WarningRelay:
         def show_above_bar(message, category, filename, lineno, file=None, line=None):
             buffer = io.StringIO()
             previous(message, category, filename, lineno, file=buffer, line=line)
-            tqdm.write(buffer.getvalue().rstrip("\n"), file=bar.fp)
+            # tqdm.write (a class method, reached through the bar) clears the bar, prints and redraws it.
+            bar.write(buffer.getvalue().rstrip("\n"), file=bar.fp)
 
         warnings.showwarning = show_above_bar
         try:

@@ -3,6 +3,8 @@ import numpy as np
 import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.airfoil.compressibility import CompressiblePolar
+from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.airfoil.polar import Polar, PolarValues
 
 
@@ -65,3 +67,16 @@ def blade_inputs(num_nodes, num_radial, hover_first=True, seed=0):
 def make_blade():
     """Factory ``make_blade(num_nodes, num_radial, hover_first=True, seed=0)`` -> input dict."""
     return blade_inputs
+
+
+@pytest.fixture(scope="session")
+def mach_polar():
+    """Mach-dependent polar: Karman-Tsien lift correction of the Re-dependent smooth test polar."""
+    return CompressiblePolar(SmoothTestPolar(), correction="karman-tsien")
+
+
+@pytest.fixture(scope="session")
+def spanwise_polar():
+    """Two analytic airfoils of different lift slope (5.0 and 6.2 per rad) blended along r/R 0.3 -> 0.9."""
+    return SpanwisePolar([AnalyticPolar(cl_alpha=5.0, reynolds_exponent=0.2),
+                          AnalyticPolar(cl_alpha=6.2, cl0=0.3, reynolds_exponent=0.2)], [0.3, 0.9])

@@ -1,5 +1,6 @@
 """BEM residual (Eq. 9 with F) and induced velocities (Eq. 8 with F): partials and consistency."""
 import numpy as np
+import openmdao.api as om
 import pytest
 from scipy.optimize import brentq
 
@@ -82,3 +83,9 @@ def test_hover_is_regular():
         ind = induced_velocities(0.2, 0.0, 100.0, 0.1, 0.8, 0.01, 0.95)
     assert np.isfinite(res.residual) and np.isfinite(res.dR_dphi)
     assert np.isfinite(ind.u_axial) and ind.u_axial > 0.0
+
+
+def test_overflow_is_an_analysis_error():
+    # V_x / V_theta = 1e302 (rpm ~ 1e-300): the momentum terms exceed the floating-point range.
+    with pytest.raises(om.AnalysisError, match="not finite"):
+        inflow_residual(0.3, 10.0, 1e-301, 0.1, 1.0, 0.01, 0.9)

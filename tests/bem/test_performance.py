@@ -98,3 +98,24 @@ def test_windmilling_rotor_keeps_finite_signed_metrics():
     assert np.all(prob.get_val("power") < 0.0)
     for name in ("efficiency", "figure_of_merit", "power_coefficient", "blade_loading"):
         assert np.all(np.isfinite(prob.get_val(name)))
+
+
+def test_tip_mach_by_hand():
+    # Tip Mach number sqrt(V_x^2 + (Omega R)^2) / a (issue definition), a = 340.294 m/s by default
+    # (sea-level ISA) and as given.
+    prob = _problem([0.0, 12.0, 45.0])
+    omega = np.array([1200.0, 2400.0, 3100.0]) * np.pi / 30.0
+    tip_speed = np.hypot([0.0, 12.0, 45.0], omega * np.array([0.7, 1.1, 1.6]))
+    np.testing.assert_allclose(prob.get_val("tip_mach"), tip_speed / 340.294, rtol=1e-15)
+    prob.set_val("speed_of_sound", [300.0, 320.0, 340.0])
+    prob.run_model()
+    np.testing.assert_allclose(prob.get_val("tip_mach"), tip_speed / [300.0, 320.0, 340.0], rtol=1e-15)
+
+
+def test_blade_without_area_has_zero_blade_loading():
+    # S = sum(c dr) = 0 (no blade): C_T / sigma_r is taken as 0 (no load), not 0/0.
+    prob = _problem([0.0, 12.0, 45.0])
+    prob.set_val("chord", np.zeros((NN, NR)))
+    prob.set_val("dthrust_dr", np.zeros((NN, NR)))
+    prob.run_model()
+    assert np.all(prob.get_val("blade_loading") == 0.0) and np.all(prob.get_val("solidity") == 0.0)

@@ -1,5 +1,6 @@
 """Prandtl tip/hub loss factor: hand values, limits and partial derivatives."""
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -71,3 +72,15 @@ def test_fast_path_matches_full_function(loss_model):
     F, dF_dphi = prandtl_loss_and_dphi(*args)
     np.testing.assert_allclose(F, full.F, rtol=1e-15)
     np.testing.assert_allclose(dF_dphi, full.dF_dphi, rtol=1e-13, atol=1e-300)
+
+
+def test_tiny_hub_radius_gives_the_tip_factor_without_overflow():
+    # f_hub = B (r - r_hub) / (2 r_hub |sin phi|) -> infinity as r_hub -> 0, so F_hub -> 1 (Prandtl's
+    # factor of a vanishing hub); the capped exponent gives that limit with finite partials.
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        both = prandtl_loss(0.3, 0.5, 1.0, 1e-300, 3, "tip_hub")
+        tip = prandtl_loss(0.3, 0.5, 1.0, 1e-300, 3, "tip")
+        F, dF_dphi = prandtl_loss_and_dphi(0.3, 0.5, 1.0, 1e-300, 3, "tip_hub")
+    assert both.F == tip.F and F == tip.F and dF_dphi == tip.dF_dphi
+    assert all(np.isfinite(x) for x in both)

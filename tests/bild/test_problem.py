@@ -33,3 +33,16 @@ def test_problem_runs_with_a_polar_object():
 def test_invalid_arguments(change, match):
     with pytest.raises(ValueError, match=match):
         bild_problem(**change)
+
+
+def test_thrust_target_problem_is_its_own_configuration():
+    # The ref_chord-input model and the thrust-target model are different problems in the cache.
+    polar = AnalyticPolar()
+    direct = bild_problem(num_nodes=1, num_radial=8, airfoil=polar)
+    solved = bild_problem(num_nodes=1, num_radial=8, airfoil=polar, thrust_target=True)
+    assert solved is not direct
+    direct.set_val("ref_chord", 0.12)
+    direct.run_model()
+    solved.set_val("thrust_target", direct.get_val("thrust"))
+    solved.run_model()
+    np.testing.assert_allclose(solved.get_val("ref_chord"), 0.12, rtol=1e-10)

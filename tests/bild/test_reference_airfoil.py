@@ -3,9 +3,11 @@ import openmdao.api as om
 import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.airfoil.compressibility import CompressiblePolar
+from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
 from bild_mdo.utils.testing import check_component_partials
-from tests.bild.conftest import NN, state
+from tests.bild.conftest import NN, NR, state
 
 # cd0 scales as Re**-0.2 (turbulent skin friction), so the max-L/D point moves with Re.
 RE_DEPENDENT = AnalyticPolar(reynolds_exponent=0.2)
@@ -63,3 +65,55 @@ def test_nonpositive_air_properties_raise(name):
     values[name][0] = 0.0
     with pytest.raises(om.AnalysisError, match=f"{name} must be positive"):
         check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=RE_DEPENDENT), values)
+
+
+# A thick root section (more zero-lift drag, less camber) blending into the default section by r/R = 0.8.
+ROOT = AnalyticPolar(cl0=0.25, cd0=0.012, k=0.012, cl_cd_min=0.3, reynolds_exponent=0.15)
+TIP = RE_DEPENDENT
+SPANWISE = SpanwisePolar([ROOT, TIP], [0.3, 0.8])
+# Karman-Tsien moves alpha* with Mach number (Prandtl-Glauert would only scale cl*).
+COMPRESSIBLE = CompressiblePolar(RE_DEPENDENT, correction="karman-tsien")
+
+
+def _with_speed_of_sound(kind, a=(340.3, 320.0, 300.0)):
+    values = state(kind)
+    values["speed_of_sound"] = np.array(a)
+    return values
+
+
+@pytest.mark.parametrize("polar", [RE_DEPENDENT, COMPRESSIBLE, SPANWISE,
+                                   SpanwisePolar([CompressiblePolar(ROOT), COMPRESSIBLE], [0.3, 0.8])],
+                         ids=["uniform", "mach", "spanwise", "spanwise_mach"])
+def test_partials_mach_and_spanwise(kind, polar):
+    check_component_partials(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=polar), _with_speed_of_sound(kind))
+
+
+def test_mach_number_is_reference_speed_without_induction_over_speed_of_sound(kind):
+    values = _with_speed_of_sound(kind)
+    prob = check_component_partials(ReferenceAirfoilComp(num_nodes=NN, polar=COMPRESSIBLE), values)
+    mach = np.hypot(values["v_axial"], values["v_theta_ref"]) / values["speed_of_sound"]
+    np.testing.assert_allclose(prob.get_val("mach_ref"), mach, rtol=1e-14)
+    point = COMPRESSIBLE.max_lift_to_drag(prob.get_val("reynolds_ref"), mach=mach)
+    np.testing.assert_array_equal(prob.get_val("alpha_star"), point.alpha)
+    np.testing.assert_array_equal(prob.get_val("cl_star"), point.cl)
+    # The same section without compressibility: at M_ref ~ 0.1-0.2 Karman-Tsien raises cl* by a few percent.
+    incompressible = RE_DEPENDENT.max_lift_to_drag(prob.get_val("reynolds_ref"))
+    assert np.all(prob.get_val("cl_star") > incompressible.cl)
+
+
+def test_spanwise_point_per_station_and_at_reference_radius(kind):
+    values = _with_speed_of_sound(kind)
+    prob = check_component_partials(ReferenceAirfoilComp(num_nodes=NN, num_radial=NR, polar=SPANWISE), values)
+    reynolds = prob.get_val("reynolds_ref")
+    assert prob.get_val("cl_star").shape == (NN, NR)
+    stations = SPANWISE.max_lift_to_drag(reynolds[:, None], radial_fraction=values["radii"] / values["radius"][:, None])
+    np.testing.assert_allclose(prob.get_val("alpha_star"), stations.alpha, rtol=1e-13)
+    np.testing.assert_allclose(prob.get_val("cd_star"), stations.cd, rtol=1e-13)
+    ref = SPANWISE.max_lift_to_drag(reynolds, radial_fraction=values["ref_radius_ratio"])
+    np.testing.assert_allclose(prob.get_val("cl_star_ref"), ref.cl, rtol=1e-13)
+    # Root and tip stations take their own airfoils' closed-form points (AnalyticPolar, Reynolds only).
+    fraction = values["radii"] / values["radius"][:, None]
+    for polar, at in ((ROOT, fraction <= 0.3), (TIP, fraction >= 0.8)):
+        alpha, cl, cd = polar.max_lift_to_drag_closed_form(np.broadcast_to(reynolds[:, None], (NN, NR)))
+        assert np.any(at)
+        np.testing.assert_allclose(prob.get_val("cl_star")[at], cl[at], rtol=1e-10)

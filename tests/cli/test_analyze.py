@@ -109,3 +109,21 @@ def test_plot_without_suffix_says_the_file_it_wrote(tmp_path, capsys):
                        "--plot", str(tmp_path / "curves"))
     assert code == 0
     assert f"wrote {tmp_path / 'curves.png'}" in out and (tmp_path / "curves.png").is_file()
+
+
+def test_collective_pitch_sweep(tmp_path, capsys):
+    blade = tmp_path / "blade.json"
+    design_rotor(advance_ratio=0.8, airfoil="analytic", num_radial=12).to_json(blade)
+    perf = tmp_path / "perf.csv"
+    code, out, err = run(capsys, "analyze", str(blade), "--collective-pitch", "-2", "2", "3", "--csv", str(perf))
+    assert code == 0, err
+    assert "swept collective_pitch" in out and "pitch [deg]" in out
+    lines = [line for line in perf.read_text().splitlines() if not line.startswith("#")]
+    table = dict(zip(lines[0].split(","), np.array([line.split(",") for line in lines[1:]], dtype=float).T))
+    np.testing.assert_allclose(np.degrees(table["collective_pitch [rad]"]), [-2.0, 0.0, 2.0], atol=1e-9)
+    np.testing.assert_allclose(table["advance_ratio [-]"], 0.8, rtol=1e-9)  # the design point of the file
+    assert np.all(np.diff(table["thrust [N]"]) > 0)  # more pitch, more thrust in attached flow
+    code, out, err = run(capsys, "analyze", str(blade), "--advance-ratio", "0.6", "1.0", "3", "--collective-pitch",
+                         "0", "1", "2")
+    assert code == 0, err
+    assert len([line for line in out.splitlines() if line.strip().startswith(("0.6", "0.8", "1.0"))]) == 6

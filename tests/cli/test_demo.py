@@ -9,3 +9,10 @@ def test_demo_writes_tables_and_files(tmp_path, capsys):
     for name in ("hover_blade.csv", "hover_blade.json", "hover_blade.prop", "hover_blade.png", "blades_J0-2.png",
                  "efficiency_Jdes1.png"):
         assert (tmp_path / "demo" / name).stat().st_size > 0
+
+
+def test_demo_airfoil_is_checked_before_any_file(tmp_path, capsys):
+    code, out, err = run(capsys, "demo", "--output-dir", str(tmp_path / "demo"), "--airfoil", "no_such_airfoil")
+    assert code == 2 and out == ""
+    assert "--airfoil: unknown airfoil 'no_such_airfoil'" in err
+    assert not (tmp_path / "demo").exists()

@@ -68,3 +68,23 @@ def test_output_files_are_checked_before_the_design(tmp_path, capsys, option, ta
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1 and message in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["folder"]
+
+
+def test_thrust_target_option(capsys):
+    code, out, err = run(capsys, "design", "--thrust", "1500", "900", "--v-axial", "0", "5", "--airfoil", "analytic",
+                         "--num-radial", "10")
+    assert code == 0, err
+    rows = [line.split() for line in out.splitlines() if line.split()[:1] in (["0"], ["1"])]
+    assert [float(row[7]) for row in rows] == [1500.0, 900.0]  # the T [N] column
+    code, _, err = run(capsys, "design", "--thrust", "1500", "--ref-chord", "0.1")
+    assert code == 2 and "give either ref_chord [m] or thrust [N]" in err
+
+
+def test_infeasible_batch_is_one_line(capsys):
+    # The paper's Assumption 3 fails at the reference station of this design (tests/results/test_design.py).
+    code, out, err = run(capsys, "design", "--v-axial", "0", "26.8", "--rpm", "800", "824", "--radius", "1.5", "1.277",
+                         "--ref-chord", "0.15", "0.2", "--ref-radius-ratio", "0.5", "0.3006", "--hub-radius-ratio",
+                         "0.2", "0.297", "--altitude", "0", "3533", "--num-radial", "12")
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1
+    assert "1 of 2 design(s) infeasible" in err and "on_infeasible='skip'" in err

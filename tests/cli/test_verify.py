@@ -128,3 +128,19 @@ def test_bad_db_paths_stop_at_once(tmp_path):
                         (tmp_path, "is a folder")):
         with pytest.raises(StoreError, match=message):
             run_verify(_args(["--db", str(db)]), io.StringIO(), _never_called, _never_called)
+
+
+def test_airfoil_option(tmp_path):
+    assert _args([]).airfoil == "naca4412"
+    db = tmp_path / "v.sqlite"
+    with pytest.raises(ValueError, match=r"^--airfoil: unknown airfoil 'no_such_airfoil'"):
+        run_verify(_args(["--airfoil", "no_such_airfoil", "--db", str(db), "--no-progress"]), io.StringIO(),
+                   _never_called, _never_called)
+    assert not db.exists()
+    # A spanwise set written with commas is stored in the one form the sweep reads (r/R:AIRFOIL;...).
+    args = _args(["--levels", "2", "--workers", "1", "--db", str(db), "--no-progress", "--airfoil",
+                  "0:analytic,1:analytic"])
+    assert run_verify(args, io.StringIO(), standins.bild_batch, standins.optimize) == 0
+    spec = SweepSpec(levels=2, airfoil="0:analytic;1:analytic")
+    with ResultsStore(db, spec, writer=False) as store:
+        assert {row["airfoil"] for row in store.rows()} == {"0:analytic;1:analytic"}

@@ -16,6 +16,7 @@ from hypothesis import strategies as st
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.results.design import design_rotor
+from bild_mdo.results.off_design import off_design_sweep
 
 # NumPy's overflow warnings at 1e300-sized inputs come from the BEM and BILD kernels; what is asserted here is
 # the outcome (a clean error or finite values).
@@ -33,7 +34,9 @@ ODD = st.one_of(
     st.integers(min_value=-3, max_value=5),
 )
 DESIGN_ARGS = ["v_axial", "advance_ratio", "rpm", "radius", "hub_radius_ratio", "ref_radius_ratio", "ref_chord",
-               "altitude", "num_blades", "airfoil", "num_radial", "loss_model", "chord_form", "root_chord_correction"]
+               "altitude", "num_blades", "airfoil", "num_radial", "loss_model", "chord_form", "root_chord_correction",
+               "thrust"]
+SWEEP_ARGS = ["design", "collective_pitch", "advance_ratios", "rpm", "altitude", "polar"]
 ANALYZE_ARGS = ["chord", "twist", "radius", "hub_radius", "rpm", "v_axial", "num_blades", "altitude", "loss_model",
                 "radii"]
 
@@ -53,6 +56,8 @@ def _expect_clean(call):
 @given(name=st.sampled_from(DESIGN_ARGS), value=ODD)
 def test_design_rotor_arguments(name, value):
     kwargs = {"airfoil": "analytic", "num_radial": 5, name: value}
+    if name == "thrust":
+        kwargs["ref_chord"] = None
     if name == "num_radial" and isinstance(value, int) and value > 50:
         return
     result = _expect_clean(lambda: design_rotor(**kwargs))
@@ -73,3 +78,18 @@ def test_analyze_rotor_arguments(name, value):
     if result is not None:
         for field in ("thrust", "torque", "power"):
             assert np.all(np.isfinite(getattr(result, field))), (name, value, field)
+
+
+@pytest.fixture(scope="module")
+def batch():
+    return design_rotor(advance_ratio=[0.5, 1.0], airfoil="analytic", num_radial=5)
+
+
+@FUZZ
+@given(name=st.sampled_from(SWEEP_ARGS), value=ODD)
+def test_off_design_sweep_arguments(batch, name, value):
+    kwargs = {"design": 1, "advance_ratios": [0.5, 1.0], name: value}
+    result = _expect_clean(lambda: off_design_sweep(batch, **kwargs))
+    if result is not None:
+        # Failed points are NaN by documentation (result.status says why); the others are finite.
+        assert np.all(np.isfinite(result.thrust[result.ok])), (name, value)

@@ -24,7 +24,7 @@ FUZZ = settings(max_examples=40 * SCALE, deadline=None, database=None,
 NUMBERS = ["0", "-1", "nan", "inf", "-inf", "1e400", "abc", "", "True", "1,5", "0x3", "1e-300", "3", "2.5"]
 GOOD = {"--rpm": ["800", "1200"], "--radius": ["1.5", "0.5"], "--hub-radius-ratio": ["0.2", "0.3"],
         "--ref-radius-ratio": ["0.5", "0.7"], "--ref-chord": ["0.15", "0.05"], "--altitude": ["0", "3000", "11000"],
-        "--v-axial": ["0", "10"], "--advance-ratio": ["0.5", "1.0"]}
+        "--v-axial": ["0", "10"], "--advance-ratio": ["0.5", "1.0"], "--thrust": ["1500", "800"]}
 AIRFOILS = ["analytic", "naca4412", "NACA4412", "foo", "", "naca44", "../x", "neuralfoil:", "analytic ", "{tmp}/blade.csv"]
 CHOICES = {"--loss-model": ["tip_hub", "tip", "none", "prandtl"], "--chord-form": ["thrust", "torque", "x"]}
 GEOMETRIES = ["blade.csv", "blade.json", "blade.prop", "missing.csv", "folder", "garbage.csv", "garbage.json",
@@ -43,7 +43,7 @@ def design_argv(draw):
     clean = draw(st.booleans())
     argv = ["design", "--airfoil", draw(st.sampled_from(AIRFOILS[:2] if clean else AIRFOILS)),
             "--num-radial", draw(st.sampled_from(["4", "6"] + ([] if clean else ["1", "0", "2.5", "x", "100000000"])))]
-    options = sorted(set(GOOD) - {"--advance-ratio"}) if clean else sorted(GOOD)
+    options = sorted(set(GOOD) - {"--advance-ratio", "--thrust"}) if clean else sorted(GOOD)
     for option in draw(st.lists(st.sampled_from(options), max_size=3, unique=True)):
         argv += [option] + draw(st.lists(_value(option, clean), min_size=1 if clean else 0, max_size=1 if clean else 3))
     for option, values in CHOICES.items():
@@ -62,7 +62,7 @@ def design_argv(draw):
 def analyze_argv(draw):
     clean = draw(st.booleans())
     argv = ["analyze", "{tmp}/" + draw(st.sampled_from(GEOMETRIES[:3] if clean else GEOMETRIES))]
-    sweep = draw(st.sampled_from(["--advance-ratio", "--rpm"] + ([] if clean else [None])))
+    sweep = draw(st.sampled_from(["--advance-ratio", "--rpm"] + ([] if clean else [None, "--collective-pitch"])))
     if clean:
         good = ["0", "0.4", "1.2"] if sweep == "--advance-ratio" else ["600", "1000", "1400"]
         argv += [sweep] + draw(st.lists(st.sampled_from(good), min_size=2, max_size=2)) + [
@@ -70,7 +70,7 @@ def analyze_argv(draw):
         return argv + draw(st.sampled_from([[], ["--altitude", "2000"], ["--loss-model", "tip"],
                                             ["--csv", "{tmp}/out.csv"], ["--airfoil", "naca4412"]]))
     if sweep:
-        good = ["0", "1.2"] if sweep == "--advance-ratio" else ["600", "1000"]
+        good = {"--advance-ratio": ["0", "1.2"], "--rpm": ["600", "1000"], "--collective-pitch": ["-2", "3"]}[sweep]
         argv += [sweep] + draw(st.lists(st.sampled_from(good + NUMBERS + ["3", "1e9", "100000000"]), min_size=0,
                                         max_size=4))
     for option in draw(st.lists(st.sampled_from(["--at-rpm", "--v-axial", "--altitude", "--design"]), max_size=2,

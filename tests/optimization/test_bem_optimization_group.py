@@ -1,10 +1,13 @@
 """BEMOptimizationGroup: exact totals of objective and constraint through the BEM analysis."""
+import warnings
+
 import numpy as np
 import openmdao.api as om
 import pytest
 from openmdao.utils.assert_utils import assert_no_approx_partials
 
 from bild_mdo.airfoil import naca4412
+from bild_mdo.bem.flow_states import PROPELLER, TURBULENT_WAKE, BEMStateWarning
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
 from bild_mdo.utils.testing import check_group_totals
 
@@ -81,3 +84,35 @@ def test_annuli_are_independent():
     scale = np.abs(before).max()
     assert np.all(np.abs(change[~moved]) <= 1e-11 * scale)
     assert np.all(np.abs(change[moved]) > 1e-6 * scale)
+
+
+def test_invalid_flow_states_are_silent_at_trial_points():
+    # A hovering blade whose three inner stations have negative pitch pushes air upward there while
+    # the rest drives the wake down: those annuli are in the vortex-ring state (Leishman, Principles
+    # of Helicopter Aerodynamics, Sec. 2.14), flagged TURBULENT_WAKE.  An optimiser's trial point may
+    # be such a design; inside the optimisation it must neither warn nor fail.
+    values = _values("stations")
+    values["twist_cp"][0, :3] = np.radians(-10.0)
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("rotor", _group("stations"), promotes=["*"])
+    prob.setup()
+    for name, value in values.items():
+        prob.set_val(name, value)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", BEMStateWarning)
+        prob.run_model()
+    np.testing.assert_array_equal(prob.get_val("bem.flow_state")[0, :3], TURBULENT_WAKE)
+    assert np.all(prob.get_val("bem.flow_state")[1] == PROPELLER)
+
+
+def test_invalid_flow_states_can_still_be_raised():
+    values = _values("stations")
+    values["twist_cp"][0, :3] = np.radians(-10.0)
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("rotor", BEMOptimizationGroup(num_nodes=NN, num_radial=NR, polar=naca4412(),
+                                                           on_invalid="raise"), promotes=["*"])
+    prob.setup()
+    for name, value in values.items():
+        prob.set_val(name, value)
+    with pytest.raises(om.AnalysisError, match="node 0, station 0"):
+        prob.run_model()

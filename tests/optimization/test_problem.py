@@ -43,3 +43,20 @@ def test_case_loads_bild_geometry_within_bounds(designs):
     lower, upper = prob._bild_optimization["twist_bounds"]
     assert np.all(lower < bild["twist"]) and np.all(bild["twist"] < upper)
     assert prob.get_val("thrust_target")[0] == bild["thrust"]
+
+
+def test_finite_difference_totals_approximate_the_exact_ones(designs):
+    # Forward differences with OpenMDAO's default step 1e-6 have a truncation error O(h f''), so the
+    # two gradients agree to about 1e-5 relative to their size, not to round-off.
+    case, bild = designs["cruise"]
+    of, wrt = ["energy_loss_ratio", "thrust_residual"], ["chord_ratio_cp", "twist_cp"]
+    gradients = {}
+    for approx in (None, "fd"):
+        prob = build_optimization_problem(*case_args(case, bild), bild_chord=bild["chord"], bild_twist=bild["twist"],
+                                          approx_totals=approx)
+        prob.run_model()
+        gradients[approx] = prob.compute_totals(of=of, wrt=wrt, return_format="array")
+    scale = np.abs(gradients[None]).max()
+    np.testing.assert_allclose(gradients["fd"], gradients[None], rtol=0.0, atol=1e-4 * scale)
+    with pytest.raises(ValueError, match="approx_totals must be None"):
+        build_optimization_problem(approx_totals="cs")

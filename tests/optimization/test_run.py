@@ -2,8 +2,9 @@
 import numpy as np
 import pytest
 
+from bild_mdo.bem.flow_states import NO_SOLUTION, PROPELLER, TURBULENT_WAKE
 from bild_mdo.optimization.problem import build_optimization_problem
-from bild_mdo.optimization.run import optimize_rotor, trim_to_thrust
+from bild_mdo.optimization.run import invalid_flow_text, optimize_rotor, trim_to_thrust
 from tests.optimization.conftest import CASE_IDS, case_args
 
 try:
@@ -28,6 +29,9 @@ def test_slsqp_converges_to_a_design_better_than_bild(kind, designs, slsqp_optim
     case, bild = designs[kind]
     result = slsqp_optima[kind]
     assert result.converged, result.status
+    # An optimal blade works as a propeller at every station (no windmilling, braking or vortex-ring
+    # annulus: each would add energy loss), so the momentum model is valid at the optimum.
+    assert result.flow_valid and np.all(result.flow_state == PROPELLER) and result.flow_state.shape == (30,)
     # The equality constraint of Sec. 5.1: the optimum produces BILD's thrust.
     assert abs(result.performance["thrust"] / bild["thrust"] - 1.0) <= 1e-6
     # The BILD geometry itself, analysed by the same BEM model and trimmed to T* by collective
@@ -124,3 +128,9 @@ def test_restarts_continue_a_stopped_run(designs, slsqp_optima):
     # to the accuracy its change of objective per step allows.
     assert result.performance["energy_loss"] == pytest.approx(
         slsqp_optima["cruise"].performance["energy_loss"], rel=1e-7)
+
+
+def test_invalid_flow_text_names_the_stations_and_states():
+    text = invalid_flow_text([TURBULENT_WAKE, PROPELLER, NO_SOLUTION, PROPELLER])
+    assert text.startswith("2 of 4 stations in an invalid BEM flow state")
+    assert "stations [0, 2]" in text and "no momentum solution" in text and "turbulent wake" in text

@@ -230,3 +230,32 @@ def test_single_infeasible_design():
         single.feasible_designs()
     with pytest.raises(ValueError, match="on_infeasible"):
         design_rotor(on_infeasible="ignore")
+
+
+def test_thrust_target_design_meets_its_thrust():
+    # BILDGroup(thrust_target=True) solves the reference chord for T = T*: the design with that chord given
+    # is the same rotor.
+    targets = np.array([1500.0, 800.0, 2500.0])
+    batch = design_rotor(thrust=targets, v_axial=[0.0, 10.0, 5.0], airfoil="analytic", num_radial=12)
+    np.testing.assert_allclose(batch.thrust, targets, rtol=1e-10)
+    again = design_rotor(ref_chord=batch.ref_chord, v_axial=[0.0, 10.0, 5.0], airfoil="analytic", num_radial=12)
+    np.testing.assert_allclose(again.thrust, targets, rtol=1e-10)
+    np.testing.assert_allclose(again.chord, batch.chord, rtol=1e-10)
+    with pytest.raises(ValueError, match="give either ref_chord .m. or thrust .N."):
+        design_rotor(thrust=1000.0, ref_chord=0.1)
+    with pytest.raises(ValueError, match="thrust must be a positive finite number in N, got -1"):
+        design_rotor(thrust=-1.0)
+
+
+def test_batch_size_is_bounded_before_the_model_is_built():
+    with pytest.raises(ValueError, match=r"designs = 10000 with 10000 stations would need about 300 GB"):
+        design_rotor(ref_chord=np.full(10_000, 0.15), num_radial=10_000)
+
+
+def test_tip_mach_number():
+    # sqrt(V^2 + (Omega R)^2) / a with the ISA sea-level speed of sound a0 = 340.294 m/s.
+    rotor = design_rotor(v_axial=[0.0, 30.0], airfoil="analytic", num_radial=12)
+    np.testing.assert_allclose(rotor.tip_mach, np.hypot([0.0, 30.0], 800.0 * np.pi / 30.0 * 1.5) / 340.294,
+                               rtol=1e-5)
+    assert rotor.mach.shape == (2, 12) and np.all(rotor.mach < rotor.tip_mach[:, None])
+    assert "tip Mach number" in rotor[0].summary()

@@ -104,8 +104,10 @@ def test_geometry_sources_agree(tmp_path):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(), "exactly one"),
-    (dict(advance_ratios=[1.0], rpms=[800.0]), "exactly one"),
+    (dict(), "give advance_ratios .J sweep., rpms .rotor-speed sweep. or a list of collective_pitch"),
+    (dict(advance_ratios=[1.0], rpms=[800.0]), "at most one"),
+    (dict(advance_ratios=[0.5], collective_pitch=[]), "collective_pitch must be a number or a non-empty"),
+    (dict(advance_ratios=[0.5], collective_pitch="0.1"), "collective_pitch must be a finite number in rad"),
     (dict(advance_ratios=[-0.5]), r"advance_ratios must be a finite number >= 0, got -0.5 \(point 0\)"),
     (dict(rpms=[900.0, 0.0]), r"rpms must be a positive finite number in rpm, got 0 \(point 1\)"),
     (dict(advance_ratios=[]), "non-empty"),
@@ -166,6 +168,7 @@ def test_points_that_raise_are_isolated_by_bisection():
     class Result:
         def __init__(self, points):
             self.flow_state = np.ones((points.size, 3), dtype=int)
+            self.mach = np.full((points.size, 3), 0.1)
             for metric in METRICS:
                 setattr(self, metric.name, points.astype(float))
 
@@ -176,9 +179,60 @@ def test_points_that_raise_are_isolated_by_bisection():
         return Result(points)
 
     r_over_r = np.ones((7, 3))
-    bem, performance, flow_state, status = off_design_module._analyze_points(run, 7, "raise", r_over_r)
+    bem, performance, stations, status = off_design_module._analyze_points(run, 7, "raise", r_over_r)
+    flow_state = stations["flow_state"]
     assert bem is None
     assert [s == "ok" for s in status] == [True, True, False, True, True, False, True]
     assert status[2] == "torque = 0.0 at node 0 of [2]"
     np.testing.assert_array_equal(performance["thrust"], [0, 1, np.nan, 3, 4, np.nan, 6])
-    assert np.all(flow_state[[2, 5]] == -1)
+    assert np.all(flow_state[[2, 5]] == -1) and np.all(np.isnan(stations["mach"][[2, 5]]))
+
+
+@pytest.mark.parametrize("design, message", [
+    (True, "design must be an integer >= -2, got True"),
+    ("0", "design must be an integer >= -2, got '0'"),
+    (1.5, "design must be an integer >= -2, got 1.5"),
+    (-3, "design must be an integer >= -2, got -3"),
+    (2, "design must be an index of the DesignResult's 2 design.s., got 2"),
+])
+def test_design_index_is_checked(design, message):
+    batch = design_rotor(advance_ratio=[0.5, 1.0], **FAST)
+    with pytest.raises(ValueError, match=message):
+        off_design_sweep(batch, advance_ratios=[0.5], design=design)
+    assert off_design_sweep(batch, advance_ratios=[1.0], design=-1).thrust[0] == pytest.approx(batch.thrust[1])
+
+
+def test_collective_pitch_is_a_twist_offset():
+    # The collective pitch turns every section by the same angle: the blade analysed with pitch d is the
+    # blade with twist + d (to round-off).  Several pitches with a J sweep give every pitch at every J.
+    rotor = design_rotor(advance_ratio=0.8, **FAST)
+    pitches = np.radians([-2.0, 3.0])
+    sweep = off_design_sweep(rotor, advance_ratios=[0.6, 0.8, 1.0], collective_pitch=pitches)
+    np.testing.assert_allclose(sweep.collective_pitch, np.repeat(pitches, 3), rtol=0, atol=0)
+    np.testing.assert_allclose(sweep.advance_ratio, np.tile([0.6, 0.8, 1.0], 2), rtol=1e-15)
+    for k, pitch in enumerate(pitches):
+        turned = dict(radii=rotor.radii, chord=rotor.chord, twist=rotor.twist + pitch, radius=1.5, hub_radius=0.3,
+                      num_blades=3)
+        reference = off_design_sweep(turned, advance_ratios=[0.6, 0.8, 1.0], rpm=800.0, polar=rotor.polar)
+        np.testing.assert_allclose(sweep.thrust[3 * k:3 * k + 3], reference.thrust, rtol=1e-12)
+        np.testing.assert_allclose(sweep.torque[3 * k:3 * k + 3], reference.torque, rtol=1e-12)
+    # Alone, a list of pitches sweeps them at the design point; more pitch, more thrust (attached flow).
+    alone = off_design_sweep(rotor, collective_pitch=np.radians([-1.0, 0.0, 1.0]))
+    assert alone.sweep == "collective_pitch" and np.all(np.diff(alone.thrust) > 0)
+    assert alone.thrust[1] == pytest.approx(rotor.thrust, rel=1e-6)
+    assert "pitch [deg]" in alone.summary() and "pitch [deg]" not in off_design_sweep(rotor, rpms=[800.0]).summary()
+
+
+def test_sweep_size_is_bounded_before_running():
+    with pytest.raises(ValueError, match=r"sweep points = 100000000 with 16 stations would need about 4.8 TB"):
+        off_design_sweep(design_rotor(advance_ratio=0.5, **FAST), advance_ratios=np.linspace(0.0, 1.0, 100_000),
+                         collective_pitch=np.zeros(1000))
+
+
+def test_mach_numbers():
+    # Tip Mach number sqrt(V^2 + (Omega R)^2) / a with the ISA sea-level speed of sound a0 = 340.294 m/s.
+    sweep = off_design_sweep(design_rotor(advance_ratio=0.8, **FAST), advance_ratios=[0.4, 0.8])
+    tip_speed = np.hypot(sweep.v_axial, 800.0 * np.pi / 30.0 * 1.5)
+    np.testing.assert_allclose(sweep.tip_mach, tip_speed / 340.294, rtol=1e-5)
+    # Each station's Mach number uses W0 = sqrt(V^2 + (Omega r)^2) < the tip speed.
+    assert sweep.mach.shape == (2, 16) and np.all(sweep.mach < sweep.tip_mach[:, None])

@@ -1,0 +1,228 @@
+"""Thrust-target design: the reference chord that gives a required thrust, solved per design inside BILDGroup.
+
+BILD's free parameter is the reference chord ``c_ref`` (Algorithm 1): the
+thrust of the ideal rotor grows with it, close to ``T ~ c_ref**p`` with
+``p`` about 0.8-1 over two decades of ``c_ref``.  ``BILDGroup(thrust_target=True)``
+makes ``ref_chord`` the state of :class:`ThrustTargetComp`, whose residual is
+``R = T / T* - 1``, and solves it with :class:`ReferenceChordSolver`: passes
+of the feed-forward chain, after each of which every design takes its own
+bracketed quasi-Newton step in ``y = ln c_ref`` on ``g = ln(T / T*)``::
+
+    y <- y - g / s,   s = dg/dy by secant (1 before the first secant: T ~ c_ref),
+
+kept inside the design's bracket ``(lo, hi)`` (``g < 0`` at ``lo``; ``g > 0``
+or an infeasible design at ``hi``), with bisection in ``y`` whenever the step
+leaves it (a factor 4 beyond the known side while one side is open), and
+steps of at most a factor 10 in ``c_ref``.  A design is converged when ``|g| <= rtol``; it then keeps its chord, so
+the last pass is consistent at every design.  A design whose bracket closes
+(to 1e-9 in ``ln c_ref``) on the infeasible side, so that the target is above
+the largest thrust the ideal loading can give (Assumption 3: the reference
+station overloads; in forward flight the thrust can even peak before that),
+or that does not converge in ``maxiter`` passes, is parked at its largest
+feasible chord below the target, evaluated once more and recorded in the
+group's feasibility ledger (raised or flagged like every infeasible design).
+
+The total derivatives do not depend on the solver: the group's
+:class:`openmdao.api.DirectSolver` solves the linear system of the whole
+chain with ``dR/dT``, ``dR/dT*`` of this residual (implicit-function theorem).
+Under complex step the real parts start converged; the imaginary parts are
+linear in each other, so their secant is the exact slope after one step and
+the imaginary part of ``c_ref`` is exact after two (three passes per solve).
+"""
+import numpy as np
+import openmdao.api as om
+from openmdao.solvers.solver import NonlinearSolver
+
+from bild_mdo.bild.feasibility import declare_feasibility_option
+from bild_mdo.utils.options import declare_size_options
+from bild_mdo.utils.sparsity import node_wrt_node
+
+_MAX_FACTOR = np.log(10.0)
+# Accepted secant slopes d ln T / d ln c_ref (the physical one is about 0.8-1).
+_SLOPE_RANGE = (0.05, 20.0)
+_EPS = np.finfo(float).eps
+# A target not reached within this relative chord of the feasibility boundary is reported as out of reach.
+_BOUNDARY_WIDTH = 1e-9
+
+
+class ThrustTargetComp(om.ImplicitComponent):
+    """Reference chord of the ideal rotor that gives the target thrust: ``R = T / T* - 1``.
+
+    Its ``solve_nonlinear`` takes one bracketed quasi-Newton step per design
+    on each pass of :class:`ReferenceChordSolver` (module docstring); used on
+    its own it does nothing but check the inputs.
+
+    Options
+    -------
+    num_nodes : int
+        Designs.
+    feasibility : FeasibilityLedger or None
+        The group's ledger (the designs whose target is not reached are recorded there).
+    rtol : float
+        Relative thrust tolerance of the solve, ``|ln(T/T*)| <= rtol`` (default 1e-12).
+    maxiter : int
+        Passes after which the designs still iterating are recorded as not converged.
+
+    Inputs
+    ------
+    thrust[nn] (N), thrust_target[nn] (N)
+        Thrust of the ideal rotor and its target ``T* > 0``.
+
+    Outputs
+    -------
+    ref_chord[nn] (m)
+        Chord at the reference station.
+    """
+
+    def initialize(self):
+        declare_size_options(self.options, radial=False)
+        declare_feasibility_option(self.options)
+        self.options.declare("rtol", types=float, default=1e-12, desc="relative thrust tolerance |ln(T/T*)|")
+        self.options.declare("maxiter", types=int, default=60, desc="passes before a design is given up")
+
+    def setup(self):
+        nn = self.options["num_nodes"]
+        self.add_input("thrust", val=np.ones(nn), units="N", desc="rotor thrust T")
+        self.add_input("thrust_target", val=np.ones(nn), units="N", desc="target thrust T* (> 0)")
+        self.add_output("ref_chord", val=np.full(nn, 0.15), units="m", lower=0.0,
+                        desc="chord at the reference station c_ref, solved for T = T*")
+        # d ln T / d ln c_ref of each design, kept across solves (the first step of the next solve uses it).
+        self._slope = np.ones(nn)
+        self.start()
+
+    def setup_partials(self):
+        rows, cols = node_wrt_node(self.options["num_nodes"])
+        self.declare_partials("ref_chord", ["thrust", "thrust_target"], rows=rows, cols=cols)
+
+    def start(self):
+        """Forget the brackets and passes of the last solve (called by the solver before its first pass)."""
+        nn = self.options["num_nodes"]
+        self._passes = 0
+        self._lo = np.full(nn, -np.inf)
+        self._hi = np.full(nn, np.inf)
+        self._hi_infeasible = np.zeros(nn, dtype=bool)  # whether hi was set by an infeasible design
+        self._parked = np.zeros(nn, dtype=bool)  # given up: at the largest feasible chord, reported at the end
+        self._previous = None  # (y, g, feasible) of the last pass, for the secant
+        #: True once every design is converged or given up (the last pass was consistent).
+        self.finished = False
+
+    def apply_nonlinear(self, inputs, outputs, residuals):
+        residuals["ref_chord"] = inputs["thrust"] / inputs["thrust_target"] - 1.0
+
+    def linearize(self, inputs, outputs, partials):
+        target = inputs["thrust_target"]
+        partials["ref_chord", "thrust"] = 1.0 / target
+        partials["ref_chord", "thrust_target"] = -inputs["thrust"] / target ** 2
+
+    def solve_nonlinear(self, inputs, outputs):
+        target = inputs["thrust_target"]
+        if not np.all(np.isfinite(np.real(target)) & (np.real(target) > 0.0)):
+            node = int(np.flatnonzero(~(np.isfinite(np.real(target)) & (np.real(target) > 0.0)))[0])
+            raise om.AnalysisError(f"{self.msginfo}: thrust_target must be positive and finite, got "
+                                   f"{float(np.real(target[node]))!r} at node {node}")
+        ledger = self.options["feasibility"]
+        if ledger is None:
+            return
+        self._passes += 1
+        self._step(inputs, outputs, ledger)
+
+    def _step(self, inputs, outputs, ledger):
+        """One pass: update the brackets, take the steps, decide whether this pass is the last."""
+        thrust, target = inputs["thrust"], inputs["thrust_target"]
+        key = f"{self.pathname}:target"
+        ledger.record(key, np.zeros(thrust.shape, dtype=bool), "", {})
+        chord = outputs["ref_chord"]
+        y = np.log(chord)
+        y_real = np.real(y)
+        feasible = ~ledger.infeasible & np.isfinite(np.real(thrust)) & (np.real(thrust) > 0.0)
+        g = np.log(np.where(feasible, thrust, target) / target)
+        g_real = np.real(g)
+        self._update_bracket(y_real, g_real, feasible)
+        slope_imag = self._update_slopes(y, g, feasible)
+        step = -g_real / self._slope
+        # Converged: |ln(T/T*)| within rtol, or a step below round-off of ln c_ref, or a bracket closed by
+        # round-off on a feasible side.  Under complex step the imaginary part must have converged too.
+        both = np.isfinite(self._lo) & np.isfinite(self._hi)
+        closed = both & ((self._hi - self._lo) <= 4.0 * _EPS * np.maximum(np.abs(self._hi), 1.0))
+        converged = feasible & ((np.abs(g_real) <= self.options["rtol"]) | (np.abs(step) <= 4.0 * _EPS)
+                                | (closed & ~self._hi_infeasible))
+        real_converged = converged
+        if np.iscomplexobj(g):
+            # The imaginary step below round-off of the imaginary part of ln c_ref (exactly zero where the
+            # perturbed input does not reach this design).
+            converged = converged & ((np.imag(g) == 0.0)
+                                     | (np.abs(np.imag(g) / slope_imag) <= 1e-13 * np.abs(np.imag(y))))
+        # Out of reach (the bracket closed on an infeasible side) or out of passes: the design is parked at
+        # its largest feasible chord below the target, evaluated once more, and reported.
+        at_boundary = both & self._hi_infeasible & ((self._hi - self._lo) <= _BOUNDARY_WIDTH)
+        give_up = ~converged & ~self._parked & (at_boundary | (self._passes >= self.options["maxiter"]))
+        move = give_up & np.isfinite(self._lo) & (self._lo != y_real)
+        self._parked |= give_up
+        if np.all(converged | self._parked) and not np.any(move):
+            self.finished = True
+            ledger.deferred = False
+            ledger.record(key, self._parked & ~converged,
+                          "thrust target not reached: above the largest thrust of a feasible ideal loading "
+                          "(lower it, or raise rpm or radius) or the reference-chord solve did not converge",
+                          {"T* [N]": target, "T [N]": thrust, "ref_chord [m]": chord})
+            return
+        ledger.deferred = True
+        y_new = y_real + np.where(feasible, np.clip(step, -_MAX_FACTOR, _MAX_FACTOR), -np.log(4.0))
+        outside = ~((y_new > self._lo) & (y_new < self._hi))
+        fallback = np.where(both, 0.5 * (self._lo + self._hi),
+                            np.where(np.isfinite(self._lo), self._lo + np.log(4.0), self._hi - np.log(4.0)))
+        y_new = np.where(real_converged, y_real, np.where(outside, fallback, y_new))
+        y_new = np.where(move, self._lo, y_new)
+        if np.iscomplexobj(y):
+            y_new = y_new + 1j * (np.imag(y) - np.imag(g) / slope_imag)
+        outputs["ref_chord"] = np.where(converged | (self._parked & ~move), chord, np.exp(y_new))
+
+    def _update_bracket(self, y, g, feasible):
+        """``lo``: largest ``ln c_ref`` with ``T < T*``; ``hi``: smallest with ``T > T*`` or infeasible."""
+        self._lo = np.where(feasible & (g < 0.0), np.maximum(self._lo, y), self._lo)
+        above = ~feasible | (g > 0.0)
+        self._hi_infeasible = np.where(above & (y <= self._hi), ~feasible, self._hi_infeasible)
+        self._hi = np.where(above, np.minimum(self._hi, y), self._hi)
+
+    def _update_slopes(self, y, g, feasible):
+        """Secant slopes ``d ln T / d ln c_ref``: of the real parts (kept), and of the imaginary parts.
+
+        Under complex step the imaginary parts are linear in each other, so their secant is the exact
+        slope after one step, and the next step puts the imaginary part of ``c_ref`` on its derivative.
+        """
+        slope_imag = self._slope
+        if self._previous is not None:
+            y_old, g_old, was_feasible = self._previous
+            dy = np.real(y) - np.real(y_old)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                secant = (np.real(g) - np.real(g_old)) / dy
+                secant_imag = (np.imag(g) - np.imag(g_old)) / (np.imag(y) - np.imag(y_old))
+            usable = feasible & was_feasible & (np.abs(dy) > 1e3 * _EPS) & np.isfinite(secant) \
+                & (secant > _SLOPE_RANGE[0]) & (secant < _SLOPE_RANGE[1])
+            self._slope = np.where(usable, secant, self._slope)
+            slope_imag = np.where(np.isfinite(secant_imag) & (secant_imag != 0.0), secant_imag, self._slope)
+        self._previous = (y, g, feasible)
+        return slope_imag
+
+
+class ReferenceChordSolver(NonlinearSolver):
+    """Passes of the BILD chain until :class:`ThrustTargetComp` has converged or given up every design.
+
+    The group names its balance component in the attribute ``thrust_target_balance``;
+    the number of passes is bounded by that component's ``maxiter``.
+    """
+
+    SOLVER = "NL: BILD ref chord"
+
+    def solve(self):
+        system = self._system()
+        balance = system.thrust_target_balance
+        balance.start()
+        try:
+            for self._iter_count in range(balance.options["maxiter"] + 2):
+                self._gs_iter()
+                if balance.finished:
+                    return
+        finally:
+            balance.options["feasibility"].deferred = False
+        raise om.AnalysisError(f"{system.msginfo}: the reference-chord solve did not finish")

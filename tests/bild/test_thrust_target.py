@@ -1,0 +1,84 @@
+"""BILDGroup(thrust_target=True): the reference chord solved for a required thrust, with exact totals."""
+import numpy as np
+import openmdao.api as om
+import pytest
+
+from bild_mdo.airfoil.analytic import AnalyticPolar
+from bild_mdo.bild import BILDGroup
+from bild_mdo.utils.testing import check_group_totals
+from tests.bild.test_bild_group_airfoils import SPANWISE
+
+NN = 24
+POLAR = AnalyticPolar(reynolds_exponent=0.2)
+
+
+def _designs(kind, n=NN, seed=0):
+    """Random rotors (tip speeds 100-230 m/s) and the reference chords whose thrust is the target."""
+    rng = np.random.default_rng(seed)
+    radius = rng.uniform(0.3, 2.0, n)
+    rpm = rng.uniform(100.0, 230.0, n) / radius * 60.0 / (2.0 * np.pi)
+    advance_ratio = np.zeros(n) if kind == "hover" else rng.uniform(0.1, 0.8, n)
+    inputs = dict(radius=radius, rpm=rpm, v_axial=advance_ratio * rpm / 60.0 * 2.0 * radius,
+                  hub_radius_ratio=rng.uniform(0.1, 0.25, n), ref_radius_ratio=rng.uniform(0.4, 0.7, n),
+                  altitude=rng.uniform(0.0, 3000.0, n))
+    return inputs, rng.uniform(0.03, 0.15, n) * radius
+
+
+def _run(inputs, thrust_target=None, ref_chord=None, polar=POLAR, **options):
+    n = len(inputs["radius"])
+    prob = om.Problem(BILDGroup(num_nodes=n, num_radial=12, polar=polar, thrust_target=thrust_target is not None,
+                                **options), reports=False)
+    prob.setup()
+    for name, value in inputs.items():
+        prob.set_val(name, value)
+    prob.set_val("ref_chord" if thrust_target is None else "thrust_target",
+                 ref_chord if thrust_target is None else thrust_target)
+    prob.run_model()
+    return prob
+
+
+def test_thrust_target_recovers_the_reference_chord(kind):
+    # T(c_ref) is monotone, so the chord that gives the thrust of a ref_chord design is that chord: the
+    # thrust-target design is the same design, to the solver tolerance.
+    inputs, chord = _designs(kind)
+    direct = _run(inputs, ref_chord=chord)
+    target = direct.get_val("thrust")
+    solved = _run(inputs, thrust_target=target)
+    np.testing.assert_allclose(solved.get_val("thrust"), target, rtol=1e-10)
+    np.testing.assert_allclose(solved.get_val("ref_chord"), chord, rtol=1e-9)
+    for name in ("torque", "chord", "twist"):
+        np.testing.assert_allclose(solved.get_val(name), direct.get_val(name), rtol=1e-8, atol=1e-12)
+    # A second solve starts from the converged chords and the secant slopes: one pass.
+    solved.run_model()
+    assert solved.model.thrust_target_balance._passes == 1
+
+
+@pytest.mark.parametrize("kind, polar", [("hover", POLAR), ("cruise", SPANWISE)], ids=["hover", "cruise_spanwise"])
+def test_totals_complex_step(kind, polar):
+    # Implicit-function totals through the balance T/T* - 1 = 0; complex step runs the solver itself.
+    inputs, chord = _designs(kind, n=3, seed=1)
+    target = _run(inputs, ref_chord=chord, polar=polar).get_val("thrust")
+    values = dict(inputs, thrust_target=target)
+    check_group_totals(lambda: BILDGroup(num_nodes=3, num_radial=12, polar=polar, thrust_target=True),
+                       of=["ref_chord", "torque", "power", "figure_of_merit", "chord", "twist"],
+                       wrt=["thrust_target", "rpm", "radius", "v_axial", "ref_radius_ratio", "altitude"],
+                       values=values, atol=1e-10, rtol=1e-6)
+
+
+def test_unreachable_target_is_infeasible_and_the_others_converge():
+    # The ideal loading has a largest thrust (the reference station overloads, Assumption 3); a target far
+    # above it is reported for its node only.
+    inputs, chord = _designs("cruise", n=3, seed=2)
+    target = _run(inputs, ref_chord=chord).get_val("thrust") * np.array([1.0, 1e3, 1.0])
+    prob = _run(inputs, thrust_target=target, on_infeasible="flag")
+    np.testing.assert_array_equal(prob.get_val("feasible"), [1.0, 0.0, 1.0])
+    np.testing.assert_allclose(prob.get_val("thrust")[[0, 2]], target[[0, 2]], rtol=1e-10)
+    assert "thrust target not reached" in prob.model.feasibility.status()[1]
+    with pytest.raises(om.AnalysisError, match=r"thrust target not reached: .* node\(s\) 1 "):
+        _run(inputs, thrust_target=target)
+
+
+def test_nonpositive_target_raises():
+    inputs, _ = _designs("hover", n=3)
+    with pytest.raises(om.AnalysisError, match="thrust_target must be positive and finite, got 0.0 at node 1"):
+        _run(inputs, thrust_target=np.array([100.0, 0.0, 100.0]))
