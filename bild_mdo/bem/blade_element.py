@@ -49,17 +49,13 @@ from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandt
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
 
-#: Per-node inputs of the BEM blade element only (BILD has no collective pitch, and reads no
-#: speed of sound at its stations): name -> (default, units, description).
-BEM_NODE_INPUTS = {
-    "speed_of_sound": (340.294, "m/s", "speed of sound a (local Mach number W0 / a)"),
-    "collective_pitch": (0.0, "rad", "collective pitch, added to the twist at every station"),
-}
-#: Inputs of the BEM blade element, in declaration order.
+#: Inputs of the BEM blade element, in declaration order (collective pitch and the speed of sound
+#: are the BEM's own: BILD designs the pitch and reads no speed of sound at its stations).
 SECTION_INPUTS = ("v_axial", "rpm", "radius", "hub_radius", "radii", "chord", "twist", "rho", "mu",
-                  *BEM_NODE_INPUTS)
+                  "speed_of_sound", "collective_pitch")
 #: Per-node inputs (shape (nn,)) of the section components; the others are per station (nn, nr).
-NODE_INPUTS = tuple(name for name in SECTION_INPUTS if name in BEM_NODE_INPUTS or VARIABLES[name][0] == "node")
+NODE_INPUTS = tuple(name for name in SECTION_INPUTS if VARIABLES[name][0] == "node")
+_SEA_LEVEL_SPEED_OF_SOUND = VARIABLES["speed_of_sound"][1]
 
 
 def _real(x):
@@ -94,8 +90,18 @@ def _at(value, idx):
     return None if value is None else value[idx]
 
 
+def _station_setup(v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound,
+                   collective_pitch):
+    """What a station's residual needs besides phi: ``V_theta``, solidity, Re, pitch and the polar's M and r/R."""
+    v_theta = rpm * RPM_TO_RAD_PER_S * radii
+    sigma = num_blades * chord / (2.0 * np.pi * radii)
+    reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
+    mach, fraction = polar_arguments(polar, np.sqrt(v_axial**2 + v_theta**2), speed_of_sound, radii, radius)
+    return v_theta, sigma, reynolds, twist + collective_pitch, mach, fraction
+
+
 def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
-                      num_blades, polar, loss_model, speed_of_sound=BEM_NODE_INPUTS["speed_of_sound"][0],
+                      num_blades, polar, loss_model, speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND,
                       collective_pitch=0.0):
     """A real ``residual(phi, idx) -> (R, dR/dphi)`` over flat station indices for the solver.
 
@@ -103,11 +109,8 @@ def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_ra
     ``dR/dphi`` is the total derivative along phi (through alpha and F; ``M`` and ``r/R`` do not
     depend on phi).
     """
-    v_theta = rpm * RPM_TO_RAD_PER_S * radii
-    sigma = num_blades * chord / (2.0 * np.pi * radii)
-    reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
-    pitch = twist + collective_pitch
-    mach, fraction = polar_arguments(polar, np.sqrt(v_axial**2 + v_theta**2), speed_of_sound, radii, radius)
+    v_theta, sigma, reynolds, pitch, mach, fraction = _station_setup(
+        v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound, collective_pitch)
 
     def residual(phi, idx):
         pv = polar.evaluate(pitch[idx] - phi, reynolds[idx], mach=_at(mach, idx), radial_fraction=_at(fraction, idx))
@@ -134,17 +137,14 @@ def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_ra
 
 
 def denominator_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
-                         num_blades, polar, loss_model, speed_of_sound=BEM_NODE_INPUTS["speed_of_sound"][0],
+                         num_blades, polar, loss_model, speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND,
                          collective_pitch=0.0):
     """A real ``admissible(phi, idx) -> bool`` over flat station indices: ``D > 0`` of Eq. (8), i.e. ``W > 0``.
 
     Arguments as in :func:`residual_function`.
     """
-    v_theta = rpm * RPM_TO_RAD_PER_S * radii
-    sigma = num_blades * chord / (2.0 * np.pi * radii)
-    reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
-    pitch = twist + collective_pitch
-    mach, fraction = polar_arguments(polar, np.sqrt(v_axial**2 + v_theta**2), speed_of_sound, radii, radius)
+    v_theta, sigma, reynolds, pitch, mach, fraction = _station_setup(
+        v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound, collective_pitch)
 
     def admissible(phi, idx):
         pv = polar.evaluate(pitch[idx] - phi, reynolds[idx], mach=_at(mach, idx), radial_fraction=_at(fraction, idx))
@@ -176,7 +176,7 @@ def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope
 
 def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
                      num_blades, polar, loss_model, loads=True, partials=True, unloaded=None,
-                     speed_of_sound=BEM_NODE_INPUTS["speed_of_sound"][0], collective_pitch=0.0):
+                     speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND, collective_pitch=0.0):
     """Residual, aerodynamics and (optionally) loads at every station, with partials.
 
     Parameters
@@ -366,12 +366,7 @@ def add_section_inputs(comp, names=SECTION_INPUTS, **values):
     """
     if "radii" in names and "radii" not in values:
         values["radii"] = np.linspace(0.2, 0.95, comp.options["num_radial"])
-    add_inputs(comp, [name for name in names if name not in BEM_NODE_INPUTS], **values)
-    nn = comp.options["num_nodes"]
-    for name in names:
-        if name in BEM_NODE_INPUTS:
-            default, units, desc = BEM_NODE_INPUTS[name]
-            comp.add_input(name, val=np.full(nn, values.get(name, default)), units=units, desc=desc)
+    add_inputs(comp, names, **values)
 
 
 def section_input_names(loss_model, polar):

@@ -6,7 +6,7 @@ import openmdao.api as om
 
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.constants import RPM_TO_RAD_PER_S, RPM_TO_REV_PER_S
-from bild_mdo.utils.options import add_inputs, declare_size_options
+from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
 
 _SQRT_2PI = np.sqrt(2.0 * np.pi)
@@ -27,7 +27,7 @@ _DEPENDS = {
     "tip_mach": ("v_axial", "rpm", "radius", "speed_of_sound"),
 }
 #: Sea-level ISA speed of sound (m/s), the default of the ``speed_of_sound`` input.
-SEA_LEVEL_SPEED_OF_SOUND = 340.294
+SEA_LEVEL_SPEED_OF_SOUND = VARIABLES["speed_of_sound"][1]
 
 
 def _abs(x):
@@ -182,9 +182,8 @@ class RotorPerformanceComp(om.ExplicitComponent):
 
     def setup(self):
         nn = self.options["num_nodes"]
-        add_inputs(self, ("dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm", "radius", "rho"))
-        self.add_input("speed_of_sound", val=np.full(nn, SEA_LEVEL_SPEED_OF_SOUND), units="m/s",
-                       desc="speed of sound a (tip Mach number)")
+        add_inputs(self, ("dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm", "radius", "rho",
+                          "speed_of_sound"))
         for name, (units, desc) in PERFORMANCE_OUTPUTS.items():
             self.add_output(name, val=np.ones(nn), units=units, desc=desc)
 

@@ -35,7 +35,7 @@ class LocalMachComp(om.ExplicitComponent):
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
         add_inputs(self, ("inflow_speed",))
-        self.add_input("speed_of_sound", val=np.full(nn, 340.29), units="m/s", desc="speed of sound a")
+        add_inputs(self, ("speed_of_sound",))
         self.add_output("mach", val=np.full((nn, nr), 0.2), units=None, desc="local Mach number W / a")
 
     def setup_partials(self):

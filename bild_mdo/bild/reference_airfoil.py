@@ -87,7 +87,7 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
         self._spanwise = bool(self._polar.varies_along_span)
         self._mach = bool(self._polar.varies_with_mach)
         add_inputs(self, ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu"))
-        self.add_input("speed_of_sound", val=np.full(nn, 340.29), units="m/s", desc="speed of sound a")
+        add_inputs(self, ("speed_of_sound",))
         self.add_output("reynolds_ref", val=np.full(nn, 3e5), units=None,
                         desc="chord Reynolds number at the reference station (speed without induction)")
         self.add_output("mach_ref", val=np.full(nn, 0.2), units=None,

@@ -54,6 +54,8 @@ VARIABLES = {
     "cd_star": ("node", 0.01, None, "drag coefficient at the maximum lift-to-drag ratio C_d*"),
     "alpha_star": ("node", 0.1, "rad", "angle of attack of maximum lift-to-drag ratio alpha*"),
     "phi_ref": ("node", 0.1, "rad", "inflow angle at the reference station"),
+    "speed_of_sound": ("node", 340.294, "m/s", "speed of sound a (ISA sea level by default)"),
+    "collective_pitch": ("node", 0.0, "rad", "collective pitch, added to the twist at every station"),
     "radii": ("dist", 1.0, "m", "radius of each station"),
     "dr": ("dist", 0.1, "m", "radial width of each station"),
     "chord": ("dist", 0.1, "m", "blade chord"),
