@@ -44,6 +44,7 @@ from typing import NamedTuple
 import numpy as np
 
 from bild_mdo.airfoil.max_lift_to_drag import max_lift_to_drag
+from bild_mdo.utils.complex_step import real_part as _real
 
 
 class PolarValues(NamedTuple):
@@ -90,10 +91,6 @@ StationPolarSecondDerivatives = _extended(
     ("d2cl_dalpha_dradial_fraction", "d2cd_dalpha_dradial_fraction"), """\
 :class:`MachPolarSecondDerivatives`, then the mixed alpha-``r/R`` derivatives
 ``d2cl_dalpha_dradial_fraction, d2cd_dalpha_dradial_fraction``.""")
-
-
-def _real(x):
-    return np.real(x) if np.iscomplexobj(x) else x
 
 
 def _flat(x):

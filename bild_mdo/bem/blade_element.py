@@ -48,6 +48,7 @@ from bild_mdo.bem.inflow_residual import (force_coefficients, induced_velocities
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
+from bild_mdo.utils.complex_step import real_part as _real
 
 #: Inputs of the BEM blade element, in declaration order (collective pitch and the speed of sound
 #: are the BEM's own: BILD designs the pitch and reads no speed of sound at its stations).
@@ -56,10 +57,6 @@ SECTION_INPUTS = ("v_axial", "rpm", "radius", "hub_radius", "radii", "chord", "t
 #: Per-node inputs (shape (nn,)) of the section components; the others are per station (nn, nr).
 NODE_INPUTS = tuple(name for name in SECTION_INPUTS if VARIABLES[name][0] == "node")
 _SEA_LEVEL_SPEED_OF_SOUND = VARIABLES["speed_of_sound"][1]
-
-
-def _real(x):
-    return np.real(x) if np.iscomplexobj(x) else x
 
 
 def _lin(*terms):

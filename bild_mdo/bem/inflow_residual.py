@@ -35,11 +35,9 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+
+from bild_mdo.utils.complex_step import real_part as _real
 import openmdao.api as om
-
-
-def _real(x):
-    return np.real(x) if np.iscomplexobj(x) else x
 
 
 class InflowResidual(NamedTuple):

@@ -27,6 +27,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from bild_mdo.utils.complex_step import real_part as _real
+
 #: Floor on ``|sin phi|`` (avoids 0/0 at phi = 0; the loss factor is 1 there anyway).
 SIN_PHI_FLOOR = 1e-12
 #: Clip range of the Prandtl exponent ``f``.
@@ -86,10 +88,6 @@ class PrandtlLoss(NamedTuple):
     dF_dhub_radius: np.ndarray
 
 
-def _real(x):
-    return np.real(x) if np.iscomplexobj(x) else x
-
-
 def _abs_sin(phi):
     """Complex-safe ``|sin phi|`` floored at SIN_PHI_FLOOR, with its phi derivative."""
     s = np.sin(phi)
@@ -102,7 +100,7 @@ def _abs_sin(phi):
     return abs_s, dabs
 
 
-def _acos_factor(f):
+def acos_factor(f):
     """``2/pi acos(exp(-f))`` with ``f`` clipped, and its derivative with respect to ``f``."""
     fr = _real(f)
     inside = (fr > EXPONENT_MIN) & (fr < EXPONENT_MAX)
@@ -192,7 +190,7 @@ def _factor(phi, gap, base, num_blades):
     abs_s, dabs_dphi = _abs_sin(phi)
     half_b = 0.5 * num_blades
     f = _exponent(half_b, gap, base, abs_s)
-    value, dF_df = _acos_factor(f)
+    value, dF_df = acos_factor(f)
     return value, (dF_df * (-f / abs_s * dabs_dphi), _where_loaded(dF_df, half_b, base * abs_s),
                    _where_loaded(dF_df, -f, base))
 
@@ -222,12 +220,12 @@ def prandtl_loss_and_dphi(phi, r, radius, hub_radius, num_blades, loss_model="ti
     abs_s, dabs_dphi = _abs_sin(phi)
     half_b = 0.5 * num_blades
     f = _exponent(half_b, radius - r, r, abs_s)
-    F, dF_df = _acos_factor(f)
+    F, dF_df = acos_factor(f)
     # df/dphi = -f/|sin| d|sin|/dphi for both exponents.
     dlog = -dabs_dphi / abs_s
     dF_dphi = dF_df * f * dlog
     if loss_model == "tip":
         return F, dF_dphi
     g = _exponent(half_b, r - hub_radius, hub_radius, abs_s)
-    G, dG_dg = _acos_factor(g)
+    G, dG_dg = acos_factor(g)
     return F * G, dF_dphi * G + F * dG_dg * g * dlog

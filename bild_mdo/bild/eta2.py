@@ -118,7 +118,7 @@ def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
     lo = np.full(n, 0.5)
     hi = np.ones(n)
     f_lo, _, _ = _bracket_function(lo, v_axial, v_theta, lam, drag_to_lift, hover)
-    # Exact values at eta = 1 (hand derivations, asserted in derive_quartic.derive): P(1) away from hover, C(1) in it.
+    # Exact values at eta = 1 (hand derivations, asserted in tools/derive_quartic.py:derive): P(1) away from hover, C(1) in it.
     sv = drag_to_lift * v_theta
     f_hi = np.where(hover, 2.0 * v_theta**2 * (lam + sv) * (sv - 2.0 * lam),
                     -lam * v_axial * (v_axial + 2.0 * sv) * (lam + v_axial + sv))

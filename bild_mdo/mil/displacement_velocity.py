@@ -3,7 +3,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.mil.kernel import add_mil_inputs, declare_design_options, nondimensional_load, station_state
-from bild_mdo.utils.newton import bracketed_newton
+from bild_mdo.utils.newton import bracketed_newton, complex_step_update
 from bild_mdo.utils.options import add_inputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
 
@@ -142,7 +142,12 @@ class DisplacementVelocityComp(om.ImplicitComponent):
             node = result.first_failure()
             raise om.AnalysisError(f"{self.msginfo}: node {node}: the displacement velocity ratio did not converge "
                                    f"(residual {result.residual[node]:.3g})")
-        outputs["zeta"] = result.x
+        zeta = result.x
+        if self.under_complex_step:
+            # One Newton update in complex arithmetic carries the exact implicit derivative in the imaginary part.
+            value = self._load(inputs, zeta.astype(complex))[0] - self._target_coefficient(inputs)[0]
+            zeta = complex_step_update(zeta, value, result.slope)
+        outputs["zeta"] = zeta
 
     def linearize(self, inputs, outputs, partials):
         target, exponent = self._target_coefficient(inputs)

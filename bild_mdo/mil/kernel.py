@@ -35,7 +35,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from bild_mdo.bem.prandtl import EXPONENT_MAX, EXPONENT_MIN
+from bild_mdo.bem.prandtl import acos_factor
+from bild_mdo.utils.complex_step import real_part as _real
 
 #: Prandtl tip factor forms: A&L's (tip flow angle) or the BEM analysis's (local flow angle).
 LOSS_FORMS = ("adkins_liebeck", "local")
@@ -48,10 +49,6 @@ MIL_VARIABLES = {
     "width_fraction": (True, "station width dr/R"),
     "zeta": (False, "displacement velocity ratio v'/V"),
 }
-
-
-def _real(x):
-    return np.real(x) if np.iscomplexobj(x) else x
 
 
 def declare_design_options(options):
@@ -155,12 +152,7 @@ class StationState(NamedTuple):
 
 def _prandtl(f):
     """``2/pi acos(exp(-f))`` with the exponent clipped as in :mod:`bild_mdo.bem.prandtl`."""
-    fr = _real(f.value)
-    inside = (fr > EXPONENT_MIN) & (fr < EXPONENT_MAX)
-    fc = np.where(fr <= EXPONENT_MIN, EXPONENT_MIN, np.where(fr >= EXPONENT_MAX, EXPONENT_MAX, f.value))
-    value = 2.0 / np.pi * np.arccos(np.exp(-fc))
-    slope = np.where(inside, 2.0 / np.pi / np.sqrt(np.expm1(2.0 * np.clip(fr, EXPONENT_MIN, EXPONENT_MAX))), 0.0)
-    return f.apply(value, slope)
+    return f.apply(*acos_factor(f.value))
 
 
 def station_state(speed_ratio, radius_fraction, zeta, drag_to_lift, num_blades, loss_form="adkins_liebeck"):

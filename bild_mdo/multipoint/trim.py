@@ -142,8 +142,8 @@ class AnalysisGroup(om.Group):
                             lhs_name="thrust", rhs_name="thrust_target", rhs_val=np.ones(nn),
                             lower=lower, upper=upper, normalize=True,
                             desc=f"{trim} trimmed so that the thrust equals thrust_target")
-        # Converges quadratically to round-off in real arithmetic; under complex step the BEM inflow
-        # residuals stay near 1e-11, so a tighter atol would stall there.
+        # Stops at atol = 1e-9 on the normalised residual (thrust within ~1e-9 relative of its target):
+        # under complex step the BEM inflow residuals stay near 1e-11, so a tighter atol would stall there.
         newton = om.NewtonSolver(solve_subsystems=True, maxiter=30, atol=1e-9, rtol=1e-12, iprint=-1,
                                  err_on_non_converge=True)
         newton.linesearch = om.BoundsEnforceLS()

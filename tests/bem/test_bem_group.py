@@ -2,12 +2,12 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
+from openmdao.utils.assert_utils import assert_no_approx_partials
 
 from bild_mdo.airfoil import get_polar
 from bild_mdo.bem.flow_states import PROPELLER, TURBULENT_WAKE, BEMStateWarning
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
-from bild_mdo.utils.testing import check_group_totals
+from bild_mdo.utils.testing import assert_totals_match, check_group_totals
 
 NN, NR, B = 3, 7, 3
 OF = ["thrust", "torque", "energy_loss", "efficiency"]
@@ -62,7 +62,7 @@ def test_totals_in_reverse_mode(analytic_polar, make_blade):
     for name in ("v_axial", "rpm", "radius", "hub_radius", "chord", "twist", "altitude"):
         prob.set_val(name, blade[name])
     prob.run_model()
-    assert_check_totals(prob.check_totals(method="cs", out_stream=None), atol=1e-8, rtol=1e-8)
+    assert_totals_match(prob.check_totals(method="cs", out_stream=None), atol=1e-8, rtol=1e-8)
 
 
 def test_group_is_feed_forward_runonce(analytic_polar, make_blade):

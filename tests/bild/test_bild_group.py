@@ -4,12 +4,12 @@ import warnings
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
+from openmdao.utils.assert_utils import assert_no_approx_partials
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.bild import BILDGroup
-from bild_mdo.utils.testing import check_group_totals
+from bild_mdo.utils.testing import assert_totals_match, check_group_totals
 
 # Midpoints of 12 equal annuli from r/R = 0.2 put station 4 at r/R = 0.2 + 4.5 * 0.8/12 = 0.5 (hand derivation).
 NR_REF = 12
@@ -42,7 +42,7 @@ def test_totals_complex_step(kind, mode):
     # through the whole chain is exact; the analytic totals must match it to round-off.
     prob = _problem(kind, mode=mode, complex_step=True)
     data = prob.check_totals(of=TOTALS_OF, wrt=TOTALS_WRT, method="cs", out_stream=None)
-    assert_check_totals(data, atol=1e-10, rtol=1e-6)
+    assert_totals_match(data, atol=1e-10, rtol=1e-6)
     analytic = "J_fwd" if mode == "fwd" else "J_rev"
     worst = max(np.max(np.abs(d[analytic] - d["J_fd"])) / max(np.max(np.abs(d["J_fd"])), 1e-300)
                 for d in data.values())
@@ -142,7 +142,7 @@ def test_unloaded_stations_in_hover_have_zero_chord():
         assert np.all(np.isfinite(prob.get_val(name)))
     data = prob.check_totals(of=["thrust", "chord", "twist"], wrt=["ref_chord", "rpm"], method="cs",
                              out_stream=None)
-    assert_check_totals(data, atol=1e-10, rtol=1e-6)
+    assert_totals_match(data, atol=1e-10, rtol=1e-6)
 
 
 @pytest.mark.parametrize("chord_form", ["thrust", "torque"])

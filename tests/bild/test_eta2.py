@@ -2,13 +2,13 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
+from openmdao.utils.assert_utils import assert_no_approx_partials
 from scipy.optimize import brentq
 
 from bild_mdo.bild import quartic as qc
 from bild_mdo.bild.eta2 import Eta2Comp, solve_eta2
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
-from bild_mdo.utils.testing import check_component_partials
+from bild_mdo.utils.testing import assert_totals_match, check_component_partials
 
 from .conftest import NN, NR, state
 from .test_quartic import eq22_lambda, random_domain
@@ -194,7 +194,7 @@ def test_totals_through_ideal_loading_and_eta2(kind):
     prob, _ = reference_chain(kind)
     wrt = ["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref", "v_theta", "cl_star", "cd_star"]
     data = prob.check_totals(of=["eta2"], wrt=wrt, method="cs", out_stream=None)
-    assert_check_totals(data, atol=1e-9, rtol=1e-9)
+    assert_totals_match(data, atol=1e-9, rtol=1e-9)
     assert_no_approx_partials(prob.model)
 
 

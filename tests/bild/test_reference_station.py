@@ -1,12 +1,11 @@
 import numpy as np
 import openmdao.api as om
 import pytest
-from openmdao.utils.assert_utils import assert_check_totals
 
 from bild_mdo.bem.inflow_residual import inflow_residual_value
 from bild_mdo.bem.prandtl import prandtl_loss
 from bild_mdo.bild.reference_station import ReferenceStationComp
-from bild_mdo.utils.testing import check_component_partials
+from bild_mdo.utils.testing import assert_totals_match, check_component_partials
 from tests.bild.conftest import NN, state
 
 WRT = ["v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius", "cl_star", "cd_star"]
@@ -27,7 +26,7 @@ def test_partials_solve_and_totals(kind, loss_model):
     assert np.all((phi > 0) & (phi < 0.5 * np.pi))
     # Totals through solve_linear against complex step through the complex Newton update.
     data = prob.check_totals(of=["phi_ref"], wrt=WRT, method="cs", out_stream=None)
-    assert_check_totals(data, atol=1e-10, rtol=1e-10)
+    assert_totals_match(data, atol=1e-10, rtol=1e-10)
 
 
 def test_negative_axial_velocity_raises():

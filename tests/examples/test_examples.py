@@ -8,9 +8,10 @@ import sys
 
 import numpy as np
 import pytest
-from openmdao.utils.assert_utils import assert_check_totals, assert_no_approx_partials
+from openmdao.utils.assert_utils import assert_no_approx_partials
 
 from bild_mdo.atmosphere import isa
+from bild_mdo.utils.testing import assert_totals_match
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 if str(ROOT) not in sys.path:
@@ -104,7 +105,7 @@ def test_evtol_sizing_total_derivatives_at_optimum(sizing):
     assert_no_approx_partials(prob.model, include_self=True, recurse=True)
     # Through BILD, the Newton-solved closure and every sizing component, against complex step.
     data = prob.check_totals(method="cs", out_stream=None)
-    assert_check_totals(data, atol=1e-8, rtol=1e-8)
+    assert_totals_match(data, atol=1e-8, rtol=1e-8)
 
 
 @pytest.mark.skipif(not HAVE_IPOPT, reason="cyipopt not installed")
