@@ -47,8 +47,8 @@ from bild_mdo.bem.inflow_residual import (force_coefficients, induced_velocities
                                           inflow_residual_value, sign_of_sine)
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
 from bild_mdo.constants import RPM_TO_RAD_PER_S
-from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
 from bild_mdo.utils.complex_step import real_part as _real
+from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
 
 #: Inputs of the BEM blade element, in declaration order (collective pitch and the speed of sound
 #: are the BEM's own: BILD designs the pitch and reads no speed of sound at its stations).

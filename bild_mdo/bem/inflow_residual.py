@@ -35,9 +35,9 @@ from __future__ import annotations
 from typing import NamedTuple
 
 import numpy as np
+import openmdao.api as om
 
 from bild_mdo.utils.complex_step import real_part as _real
-import openmdao.api as om
 
 
 class InflowResidual(NamedTuple):
