@@ -127,8 +127,9 @@ def _generated(spec, tool):
 def _resolve_text(airfoil):
     text = airfoil.strip()
     key = text.lower()
-    if key in _REGISTRY:
-        return _REGISTRY[key]()
+    compact = "".join(key.split())   # "NACA 4412" is the built-in naca4412, not a new XFOIL run
+    if compact in _REGISTRY:
+        return _REGISTRY[compact]()
     if key.startswith(NEURALFOIL_PREFIX):
         return _generated(text[len(NEURALFOIL_PREFIX):].strip(), "neuralfoil")
     path = Path(text).expanduser()

@@ -172,5 +172,9 @@ def sweep_polar(airfoil):
         else:
             members = [(x, _member(text)) for x, text in stations]
             polar = spanwise_polar(members) if len(members) > 1 else members[0][1]
+            if len(members) > 1 and any(_FIXED_RE.match(text) for _, text in stations):
+                # A member frozen at one Reynolds number has no name resolve_polar knows: the set is named by
+                # its text, which this function reads back (a geometry file stores the name).
+                polar.name = key
         _POLARS[key] = polar
     return polar

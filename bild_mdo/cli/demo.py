@@ -38,7 +38,10 @@ def run_demo(args, out):
     """
     folder = output_folder("--output-dir", args.output_dir)
     polar = airfoil_polar("--airfoil", args.airfoil)
-    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise ValueError(f"--output-dir {folder}: cannot create the folder ({err.strerror})") from None
     rotor = design_rotor(airfoil=polar)
     print(rotor.summary(), file=out)
     print("\nstations:", file=out)

@@ -17,6 +17,7 @@ from bild_mdo.plots.verification import require_matplotlib, save_figures
 from bild_mdo.airfoil.text import DEFAULT_AIRFOIL, sweep_polar
 from bild_mdo.verification.case_functions import bild_batch, optimize_case, require_optimizer
 from bild_mdo.verification.cases import SweepSpec, check_workers
+from bild_mdo.verification.executors import check_scheduler_address
 from bild_mdo.verification.runner import default_db_path, run_sweep, sweep_summary, verification_table
 from bild_mdo.verification.statistics import format_table3
 from bild_mdo.verification.store import ResultsStore
@@ -115,6 +116,8 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
     spec = SweepSpec(levels=args.levels, optimizer=args.optimizer, airfoil=airfoil)
     if args.scheduler is None:
         check_workers(args.workers)
+    else:
+        check_scheduler_address(args.scheduler)
     _require_optimizer(args.optimizer)
     try:
         sweep_polar(airfoil)  # an unknown airfoil stops here, before any file (XFOIL runs once if needed)

@@ -152,7 +152,7 @@ def read_json(path, design=0, load_polar=True):
     path = Path(path)
     with file_errors(path):
         designs = _load(path)["designs"]
-        design = validation.integer("design", design, minimum=-len(designs))
+        design = validation.integer("design", design, minimum=0)
         if not design < len(designs):
             raise ValueError(f"{path}: holds {len(designs)} design(s); design {design} does not exist")
         entry = designs[design]

@@ -214,10 +214,15 @@ def connect_dask(scheduler):
         raise ImportError(DASK_MISSING) from exc
     if isinstance(scheduler, Client):
         return scheduler, False
+    return Client(check_scheduler_address(scheduler), timeout="30s"), True
+
+
+def check_scheduler_address(scheduler):
+    """The address text of a Dask scheduler, or ValueError in one line when it cannot be one."""
     address = str(scheduler)
     if ":" not in address:
         raise ValueError(f"scheduler must be an address like 'tcp://host:8786', got {address!r}")
-    return Client(address, timeout="30s"), True
+    return address
 
 
 def _run_dask(fn, tasks, scheduler):

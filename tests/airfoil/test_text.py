@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from bild_mdo import verification
-from bild_mdo.airfoil import SpanwisePolar, naca4412
+from bild_mdo.airfoil import SpanwisePolar, naca4412, resolve_polar
 from bild_mdo.airfoil.text import (REYNOLDS_INDEPENDENT_AIRFOIL, FixedReynoldsPolar,
                                             sweep_polar)
 from bild_mdo.verification.case_functions import bild_batch, optimize_case
@@ -133,3 +133,15 @@ def test_airfoil_text_does_not_load_the_sweep_machinery():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
     assert out.stdout.strip() == "[]"
     assert verification.SweepSpec is SweepSpec and "run_sweep" in dir(verification)
+
+
+def test_spanwise_set_with_a_frozen_reynolds_member_is_named_by_its_text():
+    # A geometry file stores the polar's name: it must read back to the same polar.
+    text = "0.2:naca4412;1:naca4412@re=1e6"
+    polar = sweep_polar(text)
+    assert polar.name == text
+    assert sweep_polar(polar.name) is polar
+
+
+def test_spaced_naca_designation_of_a_built_in_airfoil_is_the_built_in():
+    assert resolve_polar("NACA 4412") is resolve_polar("naca4412")

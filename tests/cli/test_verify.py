@@ -144,3 +144,10 @@ def test_airfoil_option(tmp_path):
     spec = SweepSpec(levels=2, airfoil="0:analytic;1:analytic")
     with ResultsStore(db, spec, writer=False) as store:
         assert {row["airfoil"] for row in store.rows()} == {"0:analytic;1:analytic"}
+
+
+def test_bad_scheduler_address_stops_before_the_store_exists(tmp_path):
+    db = tmp_path / "v.sqlite"
+    with pytest.raises(ValueError, match="scheduler must be an address like 'tcp://host:8786', got 'notaurl'"):
+        run_verify(_args(["--scheduler", "notaurl", "--db", str(db)]), io.StringIO(), _never_called, _never_called)
+    assert not db.exists()
