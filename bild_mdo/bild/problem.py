@@ -9,12 +9,11 @@ hundred MB of vectors and Jacobians, so only a handful are kept.
 from __future__ import annotations
 
 import collections
-import functools
 
 import openmdao.api as om
 
 from bild_mdo import validation
-from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.bild.bild_group import BILDGroup
 
 # Set-up problems by configuration, least recently used first.
@@ -25,20 +24,6 @@ _PROBLEM_CACHE_SIZE = 4
 def clear_model_cache():
     """Forget the set-up BILD problems cached by :func:`bild_problem` (frees their memory)."""
     _PROBLEM_CACHE.clear()
-
-
-@functools.lru_cache(maxsize=None)
-def _builtin_polar(name):
-    # One object per name, so the model cache (keyed on the polar object) is hit on repeated calls.
-    return resolve_polar(name)
-
-
-def _polar(airfoil):
-    """The polar of ``airfoil`` (a Polar or a built-in name), one object per built-in name."""
-    if isinstance(airfoil, str):
-        resolve_polar(airfoil)  # the one message for an unknown name
-        return _builtin_polar(airfoil.strip().lower())
-    return resolve_polar(airfoil)
 
 
 def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_form, correction, input_mode,
@@ -75,7 +60,8 @@ def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", l
     num_nodes, num_radial, num_blades : int
         Designs, radial stations and blades (integers >= 1).
     airfoil : Polar or str
-        A polar or a built-in airfoil name (:func:`bild_mdo.airfoil.builtin.resolve_polar`).
+        A polar or airfoil text (:func:`bild_mdo.airfoil.text.sweep_polar`: a built-in name, a NACA
+        designation, polar files, ``AIRFOIL@re=RE``, a spanwise set ...).
     loss_model, chord_form, root_chord_correction, input_mode, on_infeasible, thrust_target
         Options of :class:`~bild_mdo.bild.BILDGroup` (``thrust_target=True``: set the
         input ``thrust_target`` (N) instead of ``ref_chord``, which becomes an output).  With ``on_infeasible='flag'``
@@ -87,7 +73,7 @@ def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", l
     openmdao.api.Problem
         Set up; the same object for the same configuration while it stays in the cache.
     """
-    polar = _polar(airfoil)
+    polar = sweep_polar(airfoil)  # one object per airfoil text, so the cache is hit on repeated calls
     return _bild_problem(validation.integer("num_nodes", num_nodes), validation.integer("num_radial", num_radial),
                          validation.integer("num_blades", num_blades), polar, loss_model, chord_form,
                          root_chord_correction, input_mode, on_infeasible,

@@ -28,7 +28,6 @@ import openmdao.api as om
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.bild.bild_group import BILDGroup
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
@@ -37,25 +36,6 @@ from bild_mdo.results.design_result import (DISTRIBUTION_UNITS, DISTRIBUTIONS, I
                                             ON_INFEASIBLE, OPTIONAL_OUTPUTS, DesignResult)
 
 __all__ = ["DesignResult", "design_rotor"]
-
-
-# The set-up thrust-target problem (one kept: a 10,000-design model holds hundreds of MB), by configuration.
-_THRUST_TARGET_PROBLEM = {}
-
-
-def _thrust_target_problem(polar, config):
-    """The set-up problem of ``BILDGroup(thrust_target=True)`` for ``config``, reused while it is the same."""
-    key = (id(polar), tuple(sorted(config.items())))
-    hit = _THRUST_TARGET_PROBLEM.get(key)
-    # id() can be reused after an object dies; the stored reference proves it is the same polar.
-    if hit is not None and hit[0] is polar:
-        return hit[1]
-    prob = om.Problem(BILDGroup(polar=polar, thrust_target=True, **config), reports=False)
-    prob.setup(check=False)
-    prob.final_setup()
-    _THRUST_TARGET_PROBLEM.clear()
-    _THRUST_TARGET_PROBLEM[key] = (polar, prob)
-    return prob
 
 
 def _model_outputs(prob):
@@ -191,9 +171,9 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
                   chord_form=chord_form, root_chord_correction=root_chord_correction, input_mode=input_mode,
                   on_infeasible="flag")
     # resolve_airfoil gives one polar object per airfoil text in a process, so bild_problem (keyed by the
-    # polar) reuses the set-up problem on repeated calls; a path keeps its case.
+    # polar) reuses the set-up problem on repeated calls.
     polar = resolve_airfoil(airfoil)
-    prob = bild_problem(airfoil=polar, **config) if thrust is None else _thrust_target_problem(polar, config)
+    prob = bild_problem(airfoil=polar, thrust_target=thrust is not None, **config)
     polar = prob.model.options["polar"]
     for name, arr in values.items():
         prob.set_val(name, arr, units="N" if name == "thrust_target" else INPUT_UNITS[name])

@@ -44,6 +44,7 @@ from bild_mdo.io.geometry import RotorGeometry, as_geometry, unit_key
 from bild_mdo.io.qprop import polar_from_qprop
 from bild_mdo.results import tables
 from bild_mdo.results.design import DesignResult
+from bild_mdo.utils.batches import isolate_failures
 
 #: The operating point of each sweep point: name -> units.
 POINT_UNITS = {"advance_ratio": None, "v_axial": "m/s", "rpm": "rpm"}
@@ -376,17 +377,10 @@ def _analyze_points(run, count, on_invalid, r_over_r):
     stations = {"flow_state": np.full((count, r_over_r.shape[1]), -1, dtype=int),
                 "mach": np.full((count, r_over_r.shape[1]), np.nan)}
     bem = None
-    pending = [np.arange(count)]
-    while pending:
-        points = pending.pop()
-        try:
-            result = run(points, "ignore")
-        except om.AnalysisError as err:
-            if points.size == 1:
-                status[points[0]] = _one_line(err)
-            else:
-                pending += [points[: points.size // 2], points[points.size // 2:]]
-            continue
+    successes, failures = isolate_failures(lambda points: run(points, "ignore"), np.arange(count), om.AnalysisError)
+    for point, err in failures:
+        status[point] = _one_line(err)
+    for points, result in successes:
         for name, values in stations.items():
             values[points] = np.atleast_2d(getattr(result, name))
         for name, values in performance.items():

@@ -17,12 +17,13 @@ import time
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.bem.metrics import VERIFIED_METRICS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.optimization.problem import DEFAULT_MAXITER, DEFAULT_TOL, build_optimization_problem, make_driver
 from bild_mdo.optimization.run import optimize_rotor
+from bild_mdo.utils.batches import isolate_failures
 
-from bild_mdo.airfoil.text import sweep_polar
 from .cases import CaseSetupError
 
 #: Inputs that must be equal for cases to share one batched BILD model.
@@ -100,37 +101,42 @@ def bild_batch(cases):
     return results
 
 
+class _SetupFailure(Exception):
+    """A BILD model that cannot be set up: not a failure of a case, so never isolated by bisection."""
+
+
 def _bild_group(cases, indices, results):
-    """BILD for ``cases[i]`` for i in ``indices``, bisecting a failed batch down to the failing cases."""
-    batch = [cases[i] for i in indices]
-    num_radial, num_blades, airfoil = (batch[0].inputs[k] for k in _MODEL_KEYS)
-    try:
-        prob = bild_problem(len(batch), int(num_radial), int(num_blades), sweep_polar(airfoil))
-    except (ValueError, TypeError) as exc:
-        raise CaseSetupError(f"the BILD model cannot be set up for {num_blades} blades, {num_radial} "
-                             f"stations and airfoil {airfoil!r}: {exc}") from exc
-    try:
+    """BILD for ``cases[i]`` for i in ``indices`` in one run, isolating the failing cases by bisection."""
+    num_radial, num_blades, airfoil = (cases[indices[0]].inputs[k] for k in _MODEL_KEYS)
+
+    def run(part):
+        batch = [cases[i] for i in part]
+        try:
+            prob = bild_problem(len(batch), int(num_radial), int(num_blades), sweep_polar(airfoil))
+        except (ValueError, TypeError) as exc:
+            raise _SetupFailure(exc) from exc
         _set_bild_inputs(prob, batch)
         prob.run_model()
-    except (om.AnalysisError, ValueError, ArithmeticError) as exc:
-        if len(indices) > 1:
-            half = len(indices) // 2
-            _bild_group(cases, indices[:half], results)
-            _bild_group(cases, indices[half:], results)
-        else:
-            results[indices[0]] = {"converged": False, "error": f"BILD failed: {' '.join(str(exc).split())}"}
-        return
-    values = {name: prob.get_val(name) for name in VERIFIED_METRICS + ("thrust",)}
-    chord = prob.get_val("chord", units="m")
-    twist = prob.get_val("twist", units="rad")
-    for k, i in enumerate(indices):
-        row = {name: float(values[name][k]) for name in VERIFIED_METRICS}
-        finite = all(np.isfinite(v) for v in row.values()) and np.all(np.isfinite(chord[k]))
-        row.update(chord=chord[k].copy(), twist=twist[k].copy(), thrust=float(values["thrust"][k]),
-                   converged=bool(finite))
-        if not finite:
-            row["error"] = "BILD returned non-finite values"
-        results[i] = row
+        # Copies: the cached problem is reused (and overwritten) by the next run of the same size.
+        return ({name: prob.get_val(name).copy() for name in VERIFIED_METRICS + ("thrust",)},
+                prob.get_val("chord", units="m").copy(), prob.get_val("twist", units="rad").copy())
+
+    try:
+        successes, failures = isolate_failures(run, indices, (om.AnalysisError, ValueError, ArithmeticError))
+    except _SetupFailure as exc:
+        raise CaseSetupError(f"the BILD model cannot be set up for {num_blades} blades, {num_radial} "
+                             f"stations and airfoil {airfoil!r}: {exc.__cause__}") from exc.__cause__
+    for i, exc in failures:
+        results[i] = {"converged": False, "error": f"BILD failed: {' '.join(str(exc).split())}"}
+    for part, (values, chord, twist) in successes:
+        for k, i in enumerate(part):
+            row = {name: float(values[name][k]) for name in VERIFIED_METRICS}
+            finite = all(np.isfinite(v) for v in row.values()) and np.all(np.isfinite(chord[k]))
+            row.update(chord=chord[k].copy(), twist=twist[k].copy(), thrust=float(values["thrust"][k]),
+                       converged=bool(finite))
+            if not finite:
+                row["error"] = "BILD returned non-finite values"
+            results[i] = row
 
 
 def time_single_bild_design(case, repeats=20):
