@@ -26,7 +26,10 @@ class MILPerformanceComp(om.ExplicitComponent):
 
     with the integrals as midpoint sums over the stations.  At the solved
     ``zeta`` the thrust (power) equals the target; the other quantities are
-    the design's.
+    the design's.  Without drag (``cd_star = 0``) the integrands satisfy
+    ``J1' = I1'`` and ``J2' + (1 + zeta/2) I2' = I1'/2`` at every station, so
+    ``eta = 1/(1 + zeta/2)`` exactly, for any blade number and stations (the
+    derivation is in ``tests/mil/test_closed_form_limits.py``).
 
     Options
     -------
