@@ -13,9 +13,13 @@ through three)::
 Since ``sum_k w_k c_k`` of bicubic pieces is the tensor-product spline of
 the data in ``(alpha, log Re, M)``, the surrogate is C^2 in ``M`` inside
 the table and every derivative, including ``d/dM`` and ``d2/(dalpha dM)``,
-is exact.  Mach numbers outside ``[M_0, M_last]`` are clamped (zero Mach
-derivative) with one warning per polar, as Reynolds numbers are.  Without a
-Mach number (``evaluate(alpha, Re)``) the polar is the table at ``M_0``.
+is exact.  Reynolds numbers outside the tables are extrapolated by each
+member, C^1 in log Re (:class:`~bild_mdo.airfoil.surrogate.TabulatedPolar`),
+so the blend is C^1 there too.  Mach numbers outside ``[M_0, M_last]`` are
+clamped (zero Mach derivative) with one warning per polar: past the last
+table drag diverges, which a continuation of its slope would understate
+(and tables usually start at ``M_0 = 0``).  Without a Mach number
+(``evaluate(alpha, Re)``) the polar is the table at ``M_0``.
 """
 from __future__ import annotations
 

@@ -115,7 +115,6 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None, mach=None, radial_fracti
     given = {k: np.asarray(v) for k, v in given.items() if v is not None}
     inputs = np.broadcast_arrays(np.asarray(reynolds), *given.values())
     reynolds = inputs[0]
-    is_complex = any(np.iscomplexobj(x) for x in inputs)
     re_real = np.asarray(np.real(reynolds), dtype=float)
     if not np.all(np.isfinite(re_real)):
         raise ValueError("max_lift_to_drag: Reynolds numbers must be finite")
@@ -165,13 +164,40 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None, mach=None, radial_fracti
             f"Newton iterations at Re = {_listed(re_flat[~solution.converged])}; check that the "
             "polar and its derivatives are finite near the maximum")
     alpha = solution.x
-
     v = polar.evaluate(alpha, re_flat, **extra)
     s = polar.second_derivatives(alpha, re_flat, **extra)
+    return point_from_polar_values(alpha, v, s, inputs, list(extra), shape)
+
+
+def point_from_polar_values(alpha, v, s, inputs, given, shape, correction=None):
+    """The maximum-L/D point from the polar's values at its angle of attack (flat, real arrays).
+
+    Parameters
+    ----------
+    alpha : ndarray
+        Angle of maximum L/D (rad), flat, real.
+    v, s : PolarValues, PolarSecondDerivatives (or their Mach / station forms)
+        ``polar.evaluate`` and ``polar.second_derivatives`` at ``alpha`` (flat).
+    inputs : list of array_like
+        The broadcast arguments ``[reynolds, *given values]`` (complex under complex step).
+    given : list of str
+        Names of the optional arguments given, ``'mach'`` and/or ``'radial_fraction'``, in order.
+    shape : tuple
+        Shape of the result.
+    correction : ndarray, optional
+        A last Newton correction ``delta`` (rad) below 1e-10 rad to apply: ``alpha + delta`` with
+        ``cl, cd`` carried to first order (their error is ``O(delta**2)``, far below round-off); the
+        derivatives stay those at ``alpha`` (relative change ``O(delta)``).
+
+    Returns
+    -------
+    MaxLiftToDrag or StationMaxLiftToDrag
+    """
+    # The second-order term g_alpha: the cl_a cd_a terms cancel (module docstring).
     dg_a = s.d2cl_dalpha2 * v.cd - v.cl * s.d2cd_dalpha2
     derivatives = []
-    for p in ("re", "mach", "radial_fraction"):
-        if p != "re" and p not in extra:
+    for p in ("re", "mach", "radial_fraction") if given else ("re",):
+        if p != "re" and p not in given:
             zero = np.zeros_like(alpha)
             derivatives.append((zero, zero, zero))
             continue
@@ -182,14 +208,18 @@ def max_lift_to_drag(polar, reynolds, alpha_range=None, mach=None, radial_fracti
         dalpha = -g_p / dg_a
         derivatives.append((dalpha, v.dcl_dalpha * dalpha + cl_p, v.dcd_dalpha * dalpha + cd_p))
     cl, cd = v.cl, v.cd
-    if is_complex:
-        imag = [np.imag(inputs[0]).ravel()] + [np.imag(x).ravel() for x in inputs[1:]]
-        slopes = [derivatives[0]] + [derivatives[1 if k == "mach" else 2] for k in extra]
+    if correction is not None:
+        alpha = alpha + correction
+        cl = cl + v.dcl_dalpha * correction
+        cd = cd + v.dcd_dalpha * correction
+    if any(np.iscomplexobj(x) for x in inputs):
+        imag = [np.imag(x).ravel() for x in inputs]
+        slopes = [derivatives[0]] + [derivatives[1 if k == "mach" else 2] for k in given]
         alpha = alpha + 1j * sum(h * d[0] for h, d in zip(imag, slopes))
         cl = cl + 1j * sum(h * d[1] for h, d in zip(imag, slopes))
         cd = cd + 1j * sum(h * d[2] for h, d in zip(imag, slopes))
     fields = (alpha, cl, cd) + derivatives[0]
-    if not extra:
+    if not given:
         return MaxLiftToDrag(*(np.reshape(x, shape) for x in fields))
     fields += derivatives[1] + derivatives[2]
     return StationMaxLiftToDrag(*(np.reshape(x, shape) for x in fields))

@@ -15,6 +15,10 @@ from bild_mdo.airfoil.viterna import (DEFAULT_CD_MAX, DEFAULT_CD_REVERSE, STALL_
                                       default_alpha_grid, extend_polar)
 
 _LN10 = np.log(10.0)
+# Value, first and second alpha derivative of the cubics a[..., power] at local angles t.
+_ALPHA_HORNER = (lambda a, t: a[..., 0] + t * (a[..., 1] + t * (a[..., 2] + t * a[..., 3])),
+                 lambda a, t: a[..., 1] + t * (2.0 * a[..., 2] + 3.0 * t * a[..., 3]),
+                 lambda a, t: 2.0 * a[..., 2] + 6.0 * t * a[..., 3])
 # Points per block in evaluation: keeps the gathered coefficients (32 floats per
 # point) in cache-sized pieces.
 _CHUNK = 8192
@@ -22,7 +26,7 @@ _CHUNK = 8192
 #: Version of the surrogate construction, part of every cache key (with a hash of
 #: this module's and viterna's source, and scipy's version): bump it when the
 #: numbers a TabulatedPolar gives change for the same data and settings.
-SURROGATE_VERSION = 1
+SURROGATE_VERSION = 2
 
 # Everything a TabulatedPolar needs to evaluate, as stored in the polar cache.
 _STATE_ARRAYS = ("reynolds", "coef", "grid", "ext_cl", "ext_cd", "ext_dcl", "ext_dcd", "ext_stall",
@@ -36,14 +40,9 @@ def _default_settings():
 
 @functools.lru_cache(maxsize=None)
 def code_version():
-    """Identifier of the code that builds surrogates: a key part of every cached surrogate.
-
-    Returns
-    -------
-    str
-        :data:`SURROGATE_VERSION`, scipy's version (its smoothing splines fit
-        the data) and a hash of this module's and :mod:`~bild_mdo.airfoil.viterna`'s source.
-    """
+    """Identifier of the code that builds surrogates, part of every cache key: a ``str`` of
+    :data:`SURROGATE_VERSION`, scipy's version (its smoothing splines fit the data) and a
+    hash of this module's and :mod:`~bild_mdo.airfoil.viterna`'s source."""
     import scipy
 
     sources = []
@@ -69,19 +68,12 @@ class TabulatedPolar(Polar):
     tensor-product splines) on the same kind of data; SMT is not a dependency
     here.  A cubic spline interpolant of data that are already smooth (the
     XFOIL scatter is removed per Reynolds number, before the extension, by a
-    smoothing spline in ``alpha``, drag in log space) does the same job with
-    four advantages:
-
-    * it is C^2 everywhere, including across the stall blends and at
-      +-180 deg (periodic end condition), so an optimiser sees no noise and
-      Newton's method in the BEM solve sees continuous Jacobians;
-    * it reproduces the Eq. (33) curves exactly at the table's Reynolds
-      numbers and grid angles (no second fit that could drift from the data),
-      and ``log10 Re`` is the variable in which polars change evenly;
-    * first and second derivatives in ``alpha`` and ``Re`` are analytic and
-      cheap (the spline is stored cell by cell as bicubic polynomials);
-    * evaluation is a table look-up on a uniform grid plus Horner sums, fully
-      vectorised: about 300,000 points in a few tens of milliseconds.
+    smoothing spline in ``alpha``, drag in log space) does the same job: it is
+    C^2 everywhere (stall blends and +-180 deg included), so optimisers and
+    the BEM Newton solve see continuous Jacobians; it reproduces the Eq. (33)
+    curves at the table's Reynolds numbers and grid angles; its derivatives
+    are analytic and cheap (bicubic pieces), and evaluation is a look-up on a
+    uniform grid plus Horner sums (300,000 points in some tens of ms).
 
     The pre-stall model defaults to the smoothing spline rather than the
     paper's line-and-quartic fit (``pre_stall='polynomial'``): on the built-in
@@ -89,17 +81,26 @@ class TabulatedPolar(Polar):
     XFOIL's for Re >= 1e5, while the line and quartic under-predict it by 7 to
     20 % (a quartic cannot follow the drag bucket).
 
-    Reynolds numbers outside the table are clamped to the nearest tabulated
-    Reynolds number (the Re derivatives are zero there) and one warning per
-    polar object is issued.  All tables must share one Mach number
-    (:attr:`data_mach`); the polar does not depend on Mach number (tables at
-    several Mach numbers: :class:`~bild_mdo.airfoil.mach_surrogate.MachTabulatedPolar`;
-    a correction of single-Mach data: :class:`~bild_mdo.airfoil.compressibility.CompressiblePolar`).
+    Past the table, beyond an edge ``L_e`` of ``L = log10 Re``, the spline is
+    continued C^1 in ``L`` from the edge's value ``f(alpha)`` and slope
+    ``s = df/dL`` (:func:`extrapolate_log_reynolds`; ``d = L - L_e``)::
 
-    Building takes about 0.3 s per Reynolds number (the smoothing-spline
-    fits); :meth:`cached` stores the result on disk
-    (:mod:`bild_mdo.airfoil.cache`) so that later processes load it in
-    milliseconds.
+        cl = f + d s           linear in log Re
+        cd = f exp(d s / f)    log cd linear in log Re: a power law cd ~ Re^(s / (f ln 10)),
+                               the form of skin-friction laws (Re^-1/2 laminar, Re^-1/5 turbulent)
+
+    Values, Re slopes, alpha derivatives up to the second and the cross terms
+    ``d2/(dalpha dRe)`` are continuous at the edge, and so are the maximum-L/D
+    point and its derivatives.  ``cd > 0`` past the table: the positive edge
+    value times an exponential (ValueError if the edge value is not positive).
+    (Clamped instead, the zero Re slope past the edge made Ipopt cycle there.)
+    One warning per polar object says that Re is extrapolated.  All tables must
+    share one Mach number (:attr:`data_mach`; tables at several Mach numbers:
+    :class:`~bild_mdo.airfoil.mach_surrogate.MachTabulatedPolar`; a correction of
+    single-Mach data: :class:`~bild_mdo.airfoil.compressibility.CompressiblePolar`).
+
+    Building takes about 0.3 s per Reynolds number (smoothing-spline fits);
+    :meth:`cached` stores the result on disk for later processes (:mod:`bild_mdo.airfoil.cache`).
 
     Parameters
     ----------
@@ -203,18 +204,8 @@ class TabulatedPolar(Polar):
     # ------------------------------------------------------------ the disk cache
     @classmethod
     def cache_key(cls, polars, **kwargs):
-        """Hash of the data, the settings and :func:`code_version` (the polar cache key).
-
-        Parameters
-        ----------
-        polars : sequence of PolarData
-        **kwargs
-            Constructor settings (``name`` is not part of the key).
-
-        Returns
-        -------
-        str
-        """
+        """The polar cache key (str): a hash of ``polars``, the constructor settings ``**kwargs`` but
+        ``name``, and :func:`code_version`."""
         settings = {k: v for k, v in kwargs.items() if k != "name"}
         data = [(float(p.reynolds), float(p.mach), p.alpha_deg, p.cl, p.cd)
                 for p in sorted(polars, key=lambda p: (p.mach, p.reynolds))]
@@ -255,12 +246,8 @@ class TabulatedPolar(Polar):
         return polar
 
     def state(self):
-        """The arrays that define this surrogate (stored by :meth:`cached`, read by :meth:`from_state`).
-
-        Returns
-        -------
-        dict of str to ndarray
-        """
+        """The arrays (dict of str to ndarray) that define this surrogate: :meth:`cached` stores them,
+        :meth:`from_state` reads them."""
         ext = self.extended
         return {
             "reynolds": self.reynolds, "coef": self._coef, "grid": ext[0].alpha,
@@ -357,7 +344,7 @@ class TabulatedPolar(Polar):
 
     # --------------------------------------------------------------- evaluation
     def _log_reynolds(self, reynolds):
-        """Validated ``log10 Re`` clamped to the table, and the in-range mask; warns once."""
+        """Validated ``log10 Re``, the same clamped to the table (its edge), and the in-range mask; warns once."""
         if not np.all(np.isfinite(reynolds)) or not np.all(reynolds > 0.0):
             raise ValueError(f"{self.name}: Reynolds numbers must be finite and > 0, got min "
                              f"{np.min(reynolds)!r}")
@@ -366,56 +353,61 @@ class TabulatedPolar(Polar):
         inside = (log_re >= lo) & (log_re <= hi)
         if not self._warned and not np.all(inside):
             self._warned = True
+            how = ("are evaluated at it (one table: lift and drag do not change with Re)" if lo == hi else
+                   "are extrapolated from the table's edge (lift linear in log Re, drag a power of Re)")
             # stacklevel: _compute -> _evaluate_real -> Polar.evaluate -> the caller.
-            warnings.warn(
-                f"{self.name}: Reynolds numbers outside the tabulated range "
-                f"{self.reynolds[0]:.4g}..{self.reynolds[-1]:.4g} are clamped to it "
-                f"(seen {reynolds.min():.4g}..{reynolds.max():.4g}); lift and drag do not "
-                "change with Re beyond the table (warned once per polar)", stacklevel=5)
-        return np.clip(log_re, lo, hi), inside
+            warnings.warn(f"{self.name}: Reynolds numbers outside the tabulated range {self.reynolds[0]:.4g}.."
+                          f"{self.reynolds[-1]:.4g} {how}; seen {reynolds.min():.4g}..{reynolds.max():.4g} "
+                          "(warned once per polar)", stacklevel=5)
+        return log_re, np.clip(log_re, lo, hi), inside
 
-    def _locate(self, alpha, log_re):
-        """Flat cell index and local coordinates ``(alpha - alpha_i, log10 Re - log10 Re_j)``."""
-        j = np.searchsorted(self._log_re, log_re, side="right") - 1
-        np.clip(j, 0, self._n_re_cells - 1, out=j)
-        u = log_re - self._log_re[j]
-        # Wrap onto [-pi, pi): the spline is periodic.
-        x = alpha - self._alpha0
-        if x.min() < 0.0 or x.max() >= 2.0 * np.pi:
-            x = np.mod(x, 2.0 * np.pi)
-        i = np.minimum((x / self._alpha_step).astype(np.intp), self._n_alpha_cells - 1)
-        t = x - i * self._alpha_step
-        return i * self._n_re_cells + j, t, u
-
-    def _compute(self, alpha, reynolds, second):
-        shape = alpha.shape
-        a = alpha.ravel()
-        r = reynolds.ravel()
-        if not np.all(np.isfinite(a)):
-            raise ValueError(f"{self.name}: angle of attack must be finite")
-        log_re, inside = self._log_reynolds(r)
-        # d/dRe = d/dlog10(Re) / (Re ln 10); zero where Re is clamped.
-        re_scale = np.where(inside, 1.0 / (r * _LN10), 0.0)
-        n = a.size
-        out = np.empty((2 if second else 3, 2, n))
+    def _terms(self, alpha, log_re, rows):
+        """Rows ``rows`` of the spline's ``f, f_a, f_aa, f_L, f_aL, f_aaL`` (``_a``: d/dalpha, ``_L``:
+        d/dlog10 Re) of lift and drag, shape (len(rows), 2, n)."""
+        n = alpha.size
+        out = np.empty((len(rows), 2, n))
         for start in range(0, n, _CHUNK):
             sl = slice(start, min(start + _CHUNK, n))
-            cell, t, u = self._locate(a[sl], log_re[sl])
-            c = np.take(self._coef, cell, axis=0).reshape(-1, 2, 4, 4)
-            # c[point, q, alpha power, log-Re power]; Horner in log Re, then in alpha.
-            uu = u[:, None, None]
-            c_u = c[..., 0] + uu * (c[..., 1] + uu * (c[..., 2] + uu * c[..., 3]))
-            c_du = c[..., 1] + uu * (2.0 * c[..., 2] + 3.0 * uu * c[..., 3])
-            tt = t[:, None]
-            if second:
-                out[0, :, sl] = (2.0 * c_u[..., 2] + 6.0 * tt * c_u[..., 3]).T
-                dre = c_du[..., 1] + tt * (2.0 * c_du[..., 2] + 3.0 * tt * c_du[..., 3])
-            else:
-                out[0, :, sl] = (c_u[..., 0] + tt * (c_u[..., 1] + tt * (c_u[..., 2]
-                                                                         + tt * c_u[..., 3]))).T
-                out[1, :, sl] = (c_u[..., 1] + tt * (2.0 * c_u[..., 2] + 3.0 * tt * c_u[..., 3])).T
-                dre = c_du[..., 0] + tt * (c_du[..., 1] + tt * (c_du[..., 2] + tt * c_du[..., 3]))
-            out[-1, :, sl] = dre.T * re_scale[sl]
+            # Cell (i, j) and local coordinates t = alpha - alpha_i (wrapped: periodic), u = log10 Re - log_re[j].
+            j = np.searchsorted(self._log_re, log_re[sl], side="right") - 1
+            np.clip(j, 0, self._n_re_cells - 1, out=j)
+            u = log_re[sl] - self._log_re[j]
+            x = alpha[sl] - self._alpha0
+            if x.min() < 0.0 or x.max() >= 2.0 * np.pi:
+                x = np.mod(x, 2.0 * np.pi)
+            i = np.minimum((x / self._alpha_step).astype(np.intp), self._n_alpha_cells - 1)
+            t = x - i * self._alpha_step
+            c = np.take(self._coef, i * self._n_re_cells + j, axis=0).reshape(-1, 2, 4, 4)
+            # c[point, q, alpha power, log-Re power]; Horner in log Re (value and slope), then in alpha.
+            uu, tt = u[:, None, None], t[:, None]
+            in_re = (c[..., 0] + uu * (c[..., 1] + uu * (c[..., 2] + uu * c[..., 3])),
+                     c[..., 1] + uu * (2.0 * c[..., 2] + 3.0 * uu * c[..., 3]))
+            for k, row in enumerate(rows):
+                out[k, :, sl] = _ALPHA_HORNER[row % 3](in_re[row // 3], tt).T
+        return out
+
+    def _compute(self, alpha, reynolds, second):
+        shape, a, r = alpha.shape, alpha.ravel(), reynolds.ravel()
+        if not np.all(np.isfinite(a)):
+            raise ValueError(f"{self.name}: angle of attack must be finite")
+        log_re, edge, inside = self._log_reynolds(r)
+        rows = (2, 4) if second else (0, 1, 3)
+        out = self._terms(a, edge, rows)
+        # Past the table: the C^1 continuation (class docstring); one table is constant in Re as it is.
+        past = np.flatnonzero(~inside) if self.reynolds.size > 1 else ()
+        if len(past):
+            terms = self._terms(a[past], edge[past], range(6))
+            if not np.all(terms[0, 1] > 0.0):
+                bad = past[np.argmin(terms[0, 1])]
+                raise ValueError(f"{self.name}: cd <= 0 at the table edge Re = {10.0 ** edge[bad]:.4g}, alpha = "
+                                 f"{np.degrees(a[bad]):.4g} deg: cannot extrapolate it to Re = {r[bad]:.4g}")
+            extrapolated = extrapolate_log_reynolds(terms, log_re[past] - edge[past])
+            if not np.all(np.isfinite(extrapolated[0][1])):
+                raise ValueError(f"{self.name}: cd extrapolated to Re = {r[past].min():.4g}..{r[past].max():.4g} "
+                                 "overflows: too far from the table's Reynolds numbers")
+            out[:, :, past] = [extrapolated[row] for row in rows]
+        # d/dRe = d/dlog10(Re) / (Re ln 10).
+        out[-1] *= 1.0 / (r * _LN10)
         return [x.reshape(shape) for x in out[:, 0]], [x.reshape(shape) for x in out[:, 1]]
 
     def _evaluate_real(self, alpha, reynolds):
@@ -425,3 +417,34 @@ class TabulatedPolar(Polar):
     def _second_derivatives_real(self, alpha, reynolds):
         (d2cl, d2cl_dre), (d2cd, d2cd_dre) = self._compute(alpha, reynolds, second=True)
         return PolarSecondDerivatives(d2cl, d2cl_dre, d2cd, d2cd_dre)
+
+
+def extrapolate_log_reynolds(edge, delta):
+    """Lift and drag at ``d = L - L_e`` past a table edge ``L_e`` (``L = log10 Re``; :class:`TabulatedPolar`).
+
+    Complex-step safe in ``edge`` and ``delta``.
+
+    Parameters
+    ----------
+    edge : ndarray, shape (6, 2, n)
+        ``f, f_a, f_aa, s, s_a, s_aa`` (``_a``: d/dalpha, rad) of lift
+        (``[:, 0]``) and drag (``[:, 1]``, ``f > 0``) at the edge.
+    delta : ndarray, shape (n,)
+        ``L - L_e``.
+
+    Returns
+    -------
+    tuple of 5 ndarray, shape (2, n)
+        ``c, c_a, c_aa, c_L, c_aL`` of lift and drag at ``L``.
+    """
+    f, f_a, f_aa, s, s_a, s_aa = edge[:, 0]
+    lift = (f + delta * s, f_a + delta * s_a, f_aa + delta * s_aa, s, s_a)
+    f, f_a, f_aa, s, s_a, s_aa = edge[:, 1]
+    # log cd = log f + d m, m = s / f; p_a = d(log f)/dalpha.
+    m, p_a = s / f, f_a / f
+    m_a = (s_a - m * f_a) / f
+    m_aa = (s_aa - m * f_aa) / f - 2.0 * m_a * p_a
+    log_a, log_aa = p_a + delta * m_a, f_aa / f - p_a * p_a + delta * m_aa
+    cd = f * np.exp(delta * m)
+    drag = (cd, cd * log_a, cd * (log_aa + log_a * log_a), cd * m, cd * (m * log_a + m_a))
+    return tuple(np.stack([x, y]) for x, y in zip(lift, drag))

@@ -39,6 +39,10 @@ class BEMAnalysisGroup(om.Group):
         Stations in an invalid flow state (``NO_SOLUTION``, ``TURBULENT_WAKE``, ``MIRROR_ROOT``):
         one :class:`~bild_mdo.bem.flow_states.BEMStateWarning` per run naming them (default),
         ``om.AnalysisError`` naming them, or nothing.
+    warm_start : bool
+        Start each inflow solve from the previous run's phi (default False; see
+        :class:`~bild_mdo.bem.inflow.InflowComp`): the same roots and flow states as the cold
+        solve, in about a third of the residual passes, for drivers that re-run nearby inputs.
 
     Inputs
     ------
@@ -74,6 +78,8 @@ class BEMAnalysisGroup(om.Group):
                              desc="station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
         self.options.declare("width_fractions", default=None, allow_none=True,
                              desc="station widths dr/R (with radial_fractions)")
+        self.options.declare("warm_start", types=bool, default=False,
+                             desc="start each inflow solve from the previous run's phi (InflowComp)")
 
     def setup(self):
         opts = self.options
@@ -92,7 +98,7 @@ class BEMAnalysisGroup(om.Group):
                            promotes_inputs=["radius", "hub_radius"],
                            promotes_outputs=["radii", "dr"])
         self.add_subsystem("inflow", InflowComp(**section, solve_range=opts["solve_range"],
-                                                on_invalid=opts["on_invalid"]),
+                                                on_invalid=opts["on_invalid"], warm_start=opts["warm_start"]),
                            promotes_inputs=list(SECTION_INPUTS),
                            promotes_outputs=["phi", "flow_state"])
         self.add_subsystem("loads", BladeElementLoadsComp(**section),

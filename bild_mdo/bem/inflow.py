@@ -37,9 +37,21 @@ class InflowComp(om.ImplicitComponent):
     derivative.  The state Jacobian is diagonal: ``solve_linear`` divides.  Inputs outside the
     model's domain (``v_axial < 0``, non-positive rpm, chord, radii, rho or mu) raise ``om.AnalysisError``.
 
+    Warm start (option ``warm_start=True``, for a driver that re-evaluates nearby inputs): each
+    solve starts from the previous solve's phi per station
+    (:func:`~bild_mdo.bem.root_finding.warm_region_one`).  In one residual pass it checks that the
+    cold solve would search region 1 (sign change between its end points) and brackets the root
+    between the previous phi and an end point; the Newton solve from there needs 2-3 passes
+    instead of 5-8.  A station is accepted only where the evaluated signs are consistent with a
+    single root in region 1, so the root, the flow state and the fallback are those of the cold
+    solve (to solver tolerance, ``|R| <= 1e-13``); every other station gets the full cold search.
+    (Three roots packed closely in region 1, deep stall at high solidity, can escape the check:
+    see the limitation in :func:`~bild_mdo.bem.root_finding.warm_region_one`.)
+    The first solve is cold; ``warm_start=False`` (default) is the cold solve at every call.
+
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
     :func:`~bild_mdo.bem.blade_element.declare_section_options`; ``solve_range`` ('physical' or
-    'full') and ``on_invalid`` ('warn', 'raise' or 'ignore').
+    'full'), ``on_invalid`` ('warn', 'raise' or 'ignore') and ``warm_start`` (bool, default False).
 
     Inputs
     ------
@@ -60,6 +72,8 @@ class InflowComp(om.ImplicitComponent):
     def initialize(self):
         declare_section_options(self.options)
         declare_flow_state_options(self.options)
+        self.options.declare("warm_start", types=bool, default=False,
+                             desc="start each inflow solve from the previous solve's phi (same roots as cold)")
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
@@ -70,6 +84,7 @@ class InflowComp(om.ImplicitComponent):
         self._dR_dphi = np.ones((nn, nr))
         self._state = np.full((nn, nr), PROPELLER)
         self._unloaded = np.zeros((nn, nr), dtype=bool)
+        self._previous_phi = None
 
     def setup_partials(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
@@ -143,11 +158,13 @@ class InflowComp(om.ImplicitComponent):
         residual = residual_function(**kernels)
         guess = inflow_angle_guess(flat("v_axial"), flat("rpm"), flat("radii"), flat("chord"),
                                    flat("twist") + flat("collective_pitch"), self.options["num_blades"])
+        previous = self._previous_phi if self.options["warm_start"] else None
         if self.options["solve_range"] == "physical":
             phi, found = solve_physical(residual, denominator_function(**kernels), flat("v_axial") > 0.0,
-                                        describe=self._describe(inputs), initial_guess=guess)
+                                        describe=self._describe(inputs), initial_guess=guess, previous=previous)
         else:
-            phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs), initial_guess=guess)
+            phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs), initial_guess=guess,
+                                  previous=previous)
             found = np.ones(nn * nr, dtype=bool)
         phi, found = phi.reshape(shape), found.reshape(shape)
         real_inputs = {name: np.real(inputs[name]) for name in NODE_INPUTS + ("radii", "chord", "twist")}
@@ -157,6 +174,7 @@ class InflowComp(om.ImplicitComponent):
         phi = np.where(self._unloaded, fallback, phi)
         report_invalid(self._state, self.options["on_invalid"],
                        r_over_r=real_inputs["radii"] / real_inputs["radius"][:, None])
+        self._previous_phi = phi.ravel().copy()
         if np.iscomplexobj(outputs["phi"]):
             kw = section_arguments(inputs, self.options)
             values, partials = evaluate_section(phi, loads=False, **kw)

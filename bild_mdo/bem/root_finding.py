@@ -47,6 +47,104 @@ _SCAN = np.concatenate([np.linspace(-0.5 * np.pi, -BRACKET_EPS, 19),
                         np.linspace(BRACKET_EPS, np.pi - BRACKET_EPS, 37)])
 
 
+#: Largest distance (rad) of the cold start from the previous root for which the slopes at both give
+#: the curvature of the warm start's Halley step.
+_HALLEY_SPAN = 0.1
+
+
+def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER):
+    """Warm start: region-1 roots re-solved from a previous solve's roots, where they are the cold solve's roots.
+
+    Both cold solves (:func:`solve_physical`, :func:`solve_bracketed`) first test region 1,
+    ``[eps, pi/2]``, by the signs at its end points and solve in it when they differ.  Here, in ONE
+    pass per station, the residual is evaluated at both end points, at the previous root ``p``, at
+    the cold solve's first iterate ``c`` (``initial_guess``, where inside) and at ``m = (p + c)/2``; the bracket
+    ``[eps, p]`` or ``[p, pi/2]`` (whichever has the sign change) is handed to
+    :func:`~bild_mdo.utils.newton.bracketed_newton`, started at the Halley point from ``p`` (``R''``
+    from ``R'`` at ``p`` and ``c``).
+    A station is accepted only where the cold solve would search region 1 (strictly opposite
+    end-point signs) and where everything evaluated is consistent with ONE simple root ``x`` in
+    the region: the slopes at ``x``, ``p``, ``c`` and ``m = (p + c)/2`` have the sign of ``R(pi/2)``,
+    and ``p``, ``c`` and ``m`` lie on the side of ``x`` their signs say.  With one root in region 1
+    the cold solve returns that root, so the two agree to solver tolerance.  Elsewhere the station
+    is solved cold by the caller.  Limitation: three roots in region 1 (deep stall at high
+    solidity, about 0.2 % of stations of random rotors with chord/r up to 2, none of the
+    propellers of the tests) can lie so close together that none of the samples falls between
+    them; there the cold solve's pick depends on its start point and the warm start may return
+    another of the three.
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(phi, idx) -> (R, dR_dphi)``.
+    previous : array_like
+        Previous roots (rad), shape ``(size,)``; stations outside ``(eps, pi/2)`` or not finite are
+        left to the cold solve.
+    initial_guess : ndarray, optional
+        The cold solve's ``initial_guess``.
+    tol, max_iter
+        As in :func:`solve_bracketed`.
+
+    Returns
+    -------
+    phi : ndarray
+        Roots (rad), NaN where not accepted.
+    accepted : ndarray of bool
+    """
+    a, b = _REGIONS[0]
+    previous = np.asarray(previous, dtype=float).ravel()
+    size = previous.size
+    phi = np.full(size, np.nan)
+    accepted = np.zeros(size, dtype=bool)
+    idx = np.flatnonzero(np.isfinite(previous) & (previous > a) & (previous < b))
+    n = idx.size
+    if n == 0:
+        return phi, accepted
+    p = previous[idx]
+    c = p if initial_guess is None else initial_guess[idx]
+    c = np.where((c > a) & (c < b), c, p)
+    m = 0.5 * (p + c)
+    with np.errstate(all="ignore"):
+        values, slopes = residual(np.concatenate([np.full(n, a), np.full(n, b), p, c, m]), np.tile(idx, 5))[:2]
+    ra, rb, rp, rc, rm = np.reshape(values, (5, n))
+    slopes = np.reshape(slopes, (5, n))
+    dp, dc = slopes[2:4]
+    ok = (((ra > 0.0) & (rb < 0.0)) | ((ra < 0.0) & (rb > 0.0))) & np.isfinite(rp) & np.isfinite(rc) & np.isfinite(rm)
+    left = opposite_signs(ra, rp)
+    lo, hi, f_lo = np.where(left, a, p), np.where(left, p, b), np.where(left, ra, rp)
+    # A Halley step from p (error O(dphi^3) rather than Newton's O(dphi^2): one pass fewer after an optimiser
+    # step), with R'' from the slopes at p and c where c is near p; elsewhere a Newton step.
+    gap = c - p
+    with np.errstate(all="ignore"):
+        curvature = np.where((np.abs(gap) > 1e-6) & (np.abs(gap) < _HALLEY_SPAN), (dc - dp) / gap, 0.0)
+        x0 = p - 2.0 * rp * dp / (2.0 * dp * dp - rp * curvature)
+    x0 = np.where((x0 > lo) & (x0 < hi), x0, false_position(lo, hi, f_lo, np.where(left, rp, rb)))
+    sel = np.flatnonzero(ok)
+    result = bracketed_newton(lambda x, i: residual(x, idx[sel[i]]), lo[sel], hi[sel], f_lo[sel], x0[sel],
+                              atol=tol, max_iter=max_iter)
+    x, sign_b = result.x, np.sign(rb[sel])
+    monotone = np.all(np.sign(slopes[2:, sel]) == sign_b, axis=0)
+    # One simple root x in (a, b): R falls (or rises) through it, with the sign of R(a) left of x and that of
+    # R(b) right of it; a slope of the other sign at p, c or m shows a second and a third root.
+    good = result.converged & (np.sign(result.slope) == sign_b) & monotone
+    for point, value in ((p[sel], rp[sel]), (c[sel], rc[sel]), (m[sel], rm[sel])):
+        good &= (np.abs(value) <= tol) | ((np.sign(value) == sign_b) == (point > x))
+    phi[idx[sel[good]]] = x[good]
+    accepted[idx[sel[good]]] = True
+    return phi, accepted
+
+
+def _solve_rest(cold, residual, phi, accepted, guess, describe):
+    """``(phi, found)``: the accepted warm roots, and ``cold(residual, sub, describe, guess)`` at the others."""
+    found = accepted.copy()
+    rest = np.flatnonzero(~accepted)
+    if rest.size:
+        phi_rest, found_rest = cold(lambda x, i: residual(x, rest[i]), rest, lambda i: describe(rest[i]),
+                                    None if guess is None else guess[rest])
+        phi[rest], found[rest] = phi_rest, found_rest
+    return phi, found
+
+
 def _default_describe(shape):
     def describe(flat_index):
         if len(shape) == 2:
@@ -173,7 +271,7 @@ def _solve_in(residual, idx, lo, hi, r_lo, r_hi, guess, describe, tol, max_iter)
 
 
 def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,
-                   initial_guess=None):
+                   initial_guess=None, previous=None):
     """Solve ``R(phi) = 0`` for a physical (admissible) root at every station, in CCBlade.jl's order.
 
     Regions are tried in the order of :data:`PHYSICAL_REGIONS` (Q3 only where ``forward``), each by
@@ -194,8 +292,9 @@ def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TO
         ``admissible(phi, idx) -> bool array``.
     forward : ndarray of bool
         ``V_x > 0`` per station, shape ``(size,)``.
-    describe, tol, max_iter, initial_guess
-        As in :func:`solve_bracketed`.
+    describe, tol, max_iter, initial_guess, previous
+        As in :func:`solve_bracketed` (``previous``: warm start, see :func:`warm_region_one`; a
+        station whose warm root is not admissible is solved cold).
 
     Returns
     -------
@@ -208,6 +307,13 @@ def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TO
     size = forward.size
     describe = describe or _default_describe((size,))
     guess = None if initial_guess is None else np.broadcast_to(np.asarray(initial_guess, dtype=float), (size,))
+    if previous is not None:
+        phi, warm = warm_region_one(residual, previous, guess, tol=tol, max_iter=max_iter)
+        sel = np.flatnonzero(warm)
+        warm[sel] = admissible(phi[sel], sel)
+        return _solve_rest(lambda res, sub, desc, g: solve_physical(res, lambda x, i: admissible(x, sub[i]),
+                                                                    forward[sub], desc, tol, max_iter, g),
+                           residual, phi, warm, guess, describe)
     phi = np.full(size, np.nan)
     found = np.zeros(size, dtype=bool)
     args = (residual, admissible, phi, found, describe, tol, max_iter)
@@ -216,8 +322,8 @@ def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TO
         idx = todo[forward[todo]] if k == 2 else todo
         if idx.size == 0:
             continue
-        ra = residual(np.full(idx.size, a), idx)[0]
-        rb = residual(np.full(idx.size, b), idx)[0]
+        # Both end points in one pass (the same values as two passes, at half the call overhead).
+        ra, rb = residual(np.repeat([a, b], idx.size), np.tile(idx, 2))[0].reshape(2, idx.size)
         _check_finite(ra, idx, a, describe)
         _check_finite(rb, idx, b, describe)
         ok = opposite_signs(ra, rb)
@@ -269,7 +375,7 @@ def _scan_admissible(residual, admissible, phi, found, describe, tol, max_iter, 
 
 
 def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,
-                    initial_guess=None):
+                    initial_guess=None, previous=None):
     """Solve ``R(phi) = 0`` at every station: Ning's bracket search, then the safeguarded Newton solve.
 
     The Newton solve is :func:`bild_mdo.utils.newton.bracketed_newton`, started at
@@ -295,6 +401,9 @@ def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL,
         First Newton iterate (rad), used at stations where it lies strictly inside the
         bracket found; elsewhere (and by default) the false-position point of the bracket.
         A good guess saves iterations; it cannot change which bracket is searched.
+    previous : array_like, optional
+        Roots of a previous solve (rad): a warm start (:func:`warm_region_one`), which returns
+        the root the cold solve returns; stations it cannot vouch for are solved cold.
 
     Returns
     -------
@@ -307,6 +416,12 @@ def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL,
         No bracket at some station, a non-finite residual, or no convergence.
     """
     describe = describe or _default_describe(shape or (size,))
+    if previous is not None:
+        guess = None if initial_guess is None else np.broadcast_to(np.asarray(initial_guess, dtype=float), (size,))
+        phi, warm = warm_region_one(residual, previous, guess, tol=tol, max_iter=max_iter)
+        return _solve_rest(lambda res, sub, desc, g: (solve_bracketed(res, sub.size, desc, None, tol, max_iter, g),
+                                                      np.ones(sub.size, dtype=bool)),
+                           residual, phi, warm, guess, describe)[0]
     lo, hi, r_lo, r_hi = find_brackets(residual, size, describe=describe)
     x0 = false_position(lo, hi, r_lo, r_hi)
     if initial_guess is not None:

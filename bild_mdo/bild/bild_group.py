@@ -18,6 +18,13 @@ from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
+from bild_mdo.bild.local_section_point import SECTION_POINTS
+from bild_mdo.bild.local_section_point_comp import (
+    LoadReynoldsComp,
+    LocalSectionPointComp,
+    ReferenceReynoldsComp,
+    ReferenceSectionPointComp,
+)
 from bild_mdo.bild.mach import LocalMachComp
 from bild_mdo.bild.momentum_loads import MomentumLoadsComp
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp, default_polar
@@ -35,6 +42,11 @@ def _check_polar(name, value):
     if value is not None and not isinstance(value, Polar):
         raise ValueError(f"{name} must be a bild_mdo.airfoil.Polar or None (built-in NACA 4412), "
                          f"got {type(value).__name__}")
+
+
+def _check_section_point(name, value):
+    if not (isinstance(value, str) and value in SECTION_POINTS):
+        raise ValueError(f"{name} must be 'reference' or 'local', got {value!r}")
 
 
 def _check_correction(name, value):
@@ -138,6 +150,21 @@ class BILDGroup(om.Group):
         User stations ``r/R`` and widths ``dr/R`` (shape ``(nr,)`` or
         ``(nn, nr)``), see :class:`~bild_mdo.bem.stations.StationsComp`;
         ``None`` (default): midpoints of ``nr`` equal annuli from hub to tip.
+    section_point : str
+        ``'reference'`` (default, the paper): every station at the max-L/D
+        point of the reference station's Reynolds number.  ``'local'``: each
+        station (and the reference station) minimises its ``cd/cl`` along the
+        path on which its load per unit span stays fixed while the chord, and
+        so ``Re = rho W0 c / mu``, follows from the load
+        (:mod:`bild_mdo.bild.local_section_point`); eta2 then uses each
+        station's own ``cd/cl``, and two subgroups with Newton's method close
+        the loops (see :meth:`_add_local_section_chain`).  Extra outputs:
+        ``reynolds[nn, nr]``, ``load_reynolds[nn, nr]``, ``alpha_star_ref,
+        cl_star_ref, cd_star_ref``; ``alpha_star, cl_star, cd_star`` are
+        ``[nn, nr]`` and ``mach_ref`` is not computed.  Needs a polar that
+        varies with the Reynolds number only.  Where two minima of
+        ``cd/cl`` are nearly equal the lower is taken, so the design can jump
+        (a kink in chord and twist as functions of the inputs) where they swap.
     thrust_target : bool
         False (default): ``ref_chord`` is an input.  True: ``thrust_target``
         is, and ``ref_chord`` is the output that gives ``thrust =
@@ -208,6 +235,9 @@ class BILDGroup(om.Group):
                              desc="user station widths dr/R (with radial_fractions)")
         self.options.declare("thrust_target", types=bool, default=False,
                              desc="True: input thrust_target (N) and the reference chord solved for it")
+        self.options.declare("section_point", default="reference", check_valid=_check_section_point,
+                             desc="'reference': every station at the max-L/D point of the reference Reynolds "
+                                  "number (the paper); 'local': each station minimises cd/cl at its fixed load")
 
     def setup(self):
         opts = self.options
@@ -235,45 +265,48 @@ class BILDGroup(om.Group):
         self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
                            promotes_inputs=["rpm", "radii", "ref_radius"],
                            promotes_outputs=["v_theta", "v_theta_ref"])
-        # A polar that varies along the span gives every station its own airfoil point (nn, nr); the
-        # reference station then reads its own point, promoted as cl_star_ref, cd_star_ref.
-        spanwise = bool(polar.varies_along_span)
-        point = ["alpha_star", "cl_star", "cd_star"]
-        airfoil_in = ["v_axial", "v_theta_ref", "ref_chord", "rho", "mu", "speed_of_sound"]
-        if spanwise:
-            airfoil_in += ["radii", "radius", "ref_radius_ratio"]
-            point += [f"{name}_ref" for name in point]
-        self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**size, polar=polar),
-                           promotes_inputs=airfoil_in, promotes_outputs=["reynolds_ref", "mach_ref"] + point)
-        reference_in = [(name, f"{name}_ref") if spanwise and name in ("cl_star", "cd_star") else name
-                        for name in REFERENCE_INPUTS]
-        self.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
-                           promotes_inputs=reference_in, promotes_outputs=["phi_ref"])
-        self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
-                           promotes_inputs=["phi_ref"] + reference_in,
-                           promotes_outputs=["u_axial_ref", "u_theta_ref"])
-        self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
-                           promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
-                           promotes_outputs=["ideal_loading_constant"])
-        along = dict(varies_along_span=spanwise)
-        self.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
-                           promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
-                           promotes_outputs=["eta2"])
-        self.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
-                           promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
-                           promotes_outputs=["u_axial", "u_theta"])
-        self.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
-                           promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
-                           promotes_outputs=["phi", "inflow_speed", "twist"])
-        self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
-                           promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
-                                            "hub_radius"],
-                           promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
-        chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
-        self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
-                                              **along),
-                           promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
-                           promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
+        if opts["section_point"] == "local":
+            self._add_local_section_chain(polar, node, size, loss, checked)
+        else:
+            # A polar that varies along the span gives every station its own airfoil point (nn, nr); the
+            # reference station then reads its own point, promoted as cl_star_ref, cd_star_ref.
+            spanwise = bool(polar.varies_along_span)
+            point = ["alpha_star", "cl_star", "cd_star"]
+            airfoil_in = ["v_axial", "v_theta_ref", "ref_chord", "rho", "mu", "speed_of_sound"]
+            if spanwise:
+                airfoil_in += ["radii", "radius", "ref_radius_ratio"]
+                point += [f"{name}_ref" for name in point]
+            self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**size, polar=polar),
+                               promotes_inputs=airfoil_in, promotes_outputs=["reynolds_ref", "mach_ref"] + point)
+            reference_in = [(name, f"{name}_ref") if spanwise and name in ("cl_star", "cd_star") else name
+                            for name in REFERENCE_INPUTS]
+            self.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
+                               promotes_inputs=reference_in, promotes_outputs=["phi_ref"])
+            self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
+                               promotes_inputs=["phi_ref"] + reference_in,
+                               promotes_outputs=["u_axial_ref", "u_theta_ref"])
+            self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
+                               promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
+                               promotes_outputs=["ideal_loading_constant"])
+            along = dict(varies_along_span=spanwise)
+            self.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
+                               promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
+                               promotes_outputs=["eta2"])
+            self.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
+                               promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
+                               promotes_outputs=["u_axial", "u_theta"])
+            self.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
+                               promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
+                               promotes_outputs=["phi", "inflow_speed", "twist"])
+            self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
+                               promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
+                                                "hub_radius"],
+                               promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+            chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
+            self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
+                                                  **along),
+                               promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
+                               promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
         self.add_subsystem("root_chord_correction",
                            RootChordCorrectionComp(**size, correction_constant=opts["root_chord_correction"]),
                            promotes_inputs=["chord_raw", "ref_chord", "radii", "radius"],
@@ -308,3 +341,83 @@ class BILDGroup(om.Group):
         else:
             self.set_input_defaults("ref_chord", val=np.full(nn, 0.15), units="m")
         self.set_input_defaults("altitude", val=np.zeros(nn), units="m")
+
+    def _add_local_section_chain(self, polar, node, size, loss, checked):
+        """Steps 1-7 with each station's own section point (``section_point='local'``).
+
+        Two coupled loops, each a subgroup solved by Newton's method with a
+        direct linear solve (exact totals through the loops):
+
+        * ``reference_point``: the reference station's BEM inflow angle with
+          ``c_ref`` and its section point at ``Re_ref = rho W0 c_ref / mu``: the
+          point that is a minimum of ``cd/cl`` along its own path of fixed load
+          (:mod:`~bild_mdo.bild.local_section_point_reference`), so a station
+          placed at ``r_ref`` gets the same load, the same point and the chord
+          ``c_ref`` (except where the path has a second, lower minimum: see there).
+        * ``section_point_loop``: eta2 (with each station's own ``cd/cl``) ->
+          induced velocities -> phi, W -> loads -> load Reynolds number -> the
+          stations' section points -> eta2.
+        """
+        opts = self.options
+        if polar.varies_along_span or polar.varies_with_mach:
+            raise ValueError("section_point='local' needs a polar that varies with the Reynolds number only; "
+                             f"{polar.name!r} varies with Mach number or along the span: use section_point='reference'")
+        form = dict(num_blades=opts["num_blades"], chord_form=opts["chord_form"])
+        reference_in = [(name, f"{name}_ref") if name in ("cl_star", "cd_star") else name
+                        for name in REFERENCE_INPUTS]
+        self.add_subsystem("reference_reynolds", ReferenceReynoldsComp(**node),
+                           promotes_inputs=["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"],
+                           promotes_outputs=["reynolds_ref"])
+        loop = _coupled_loop(self.add_subsystem("reference_point", om.Group(), promotes=["*"]))
+        loop.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
+                           promotes_inputs=reference_in, promotes_outputs=["phi_ref"])
+        loop.add_subsystem("reference_section_point",
+                           ReferenceSectionPointComp(**node, chord_form=opts["chord_form"], polar=polar),
+                           promotes_inputs=["phi_ref", "reynolds_ref"],
+                           promotes_outputs=["alpha_star_ref", "cl_star_ref", "cd_star_ref"])
+        self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
+                           promotes_inputs=["phi_ref"] + reference_in,
+                           promotes_outputs=["u_axial_ref", "u_theta_ref"])
+        self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
+                           promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
+                           promotes_outputs=["ideal_loading_constant"])
+        along = dict(varies_along_span=True)
+        loop = _coupled_loop(self.add_subsystem("section_point_loop", om.Group(), promotes=["*"]))
+        loop.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
+                           promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
+                           promotes_outputs=["eta2"])
+        loop.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
+                           promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
+                           promotes_outputs=["u_axial", "u_theta"])
+        loop.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
+                           promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
+                           promotes_outputs=["phi", "inflow_speed", "twist"])
+        loop.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
+                           promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
+                                            "hub_radius"],
+                           promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+        chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
+        loop.add_subsystem("load_reynolds", LoadReynoldsComp(**size, **form),
+                           promotes_inputs=chord_load + ["inflow_speed", "v_theta", "v_axial", "mu"],
+                           promotes_outputs=["load_reynolds"])
+        loop.add_subsystem("section_point", LocalSectionPointComp(**size, **form, polar=polar),
+                           promotes_inputs=["phi", "load_reynolds"],
+                           promotes_outputs=["alpha_star", "cl_star", "cd_star", "reynolds"])
+        self.add_subsystem("chord", ChordComp(**size, **form, **checked, **along),
+                           promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
+                           promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
+
+
+def _coupled_loop(group):
+    """Newton's method with a direct linear solve on a subgroup that closes a loop of explicit components."""
+    # The implicit members (the reference BEM solve, eta2) solve themselves at every iteration, so Newton's
+    # method only closes the loop of the section point, which is mildly nonlinear: 2-4 iterations.
+    newton = om.NewtonSolver(solve_subsystems=True, max_sub_solves=_LOOP_MAX_ITERATIONS,
+                             maxiter=_LOOP_MAX_ITERATIONS, atol=1e-10, rtol=1e-12, iprint=-1,
+                             err_on_non_converge=True)
+    group.nonlinear_solver = newton
+    group.linear_solver = om.DirectSolver(assemble_jac=True)
+    return group
+
+
+_LOOP_MAX_ITERATIONS = 30

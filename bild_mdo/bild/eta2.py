@@ -8,18 +8,17 @@ from bild_mdo.bild.airfoil_point import (
     declare_spanwise_option,
     per_station,
 )
-from bild_mdo.bild.quartic import (
-    physical_factor_term_partials,
-    physical_factor_terms,
-    quartic,
-    quartic_partials,
-)
+from bild_mdo.bild.quartic import quartic, quartic_partials
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.newton import bracketed_newton, complex_step_update, false_position
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 _MAX_ITERATIONS = 200
+#: Largest number of stations whose bracket is narrowed by a grid scan first (:func:`_scan_bracket`).
+_SCAN_MAX = 2048
+_SCAN_STEP = 0.01
+_SCAN_GRID = 0.5 + _SCAN_STEP * np.arange(1, round(0.5 / _SCAN_STEP))
 
 
 def _bracket_function(eta, v_axial, v_theta, lam, drag_to_lift, hover):
@@ -44,23 +43,35 @@ def _bracket_function(eta, v_axial, v_theta, lam, drag_to_lift, hover):
     Returns ``(f, df/deta, scale)``; ``eps * scale`` bounds the rounding error
     of ``f``.
     """
-    n_term, m_term, b, c = physical_factor_terms(eta, v_axial, v_theta, lam, drag_to_lift)
-    dn, dm, _, dc = physical_factor_term_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt=("eta",))["eta"]
+    # N, M, b, c of tools/derive_quartic.py (bild_mdo.bild.quartic.physical_factor_terms) and their eta
+    # derivatives, written out: this runs once per Newton pass.
+    v2 = v_theta * v_theta
+    one_minus = 1.0 - eta
+    two_eta = 2.0 * eta - 1.0
+    sum_axial = lam + v_axial
+    sv_x = drag_to_lift * v_axial
+    n_term = 2.0 * sv_x * eta * v_theta + v_axial * two_eta * sum_axial + v2 * one_minus * (4.0 * eta - 1.0)
+    dn = 2.0 * sv_x * v_theta + 2.0 * v_axial * sum_axial + v2 * (5.0 - 8.0 * eta)
+    m_term = 2.0 * drag_to_lift * v_theta - v_axial + two_eta * 2.0 * sum_axial
+    dm = 4.0 * sum_axial
+    b = 0.5 * (v_axial - drag_to_lift * v_theta)
+    inner = v_theta * (sv_x + v_theta * one_minus)
+    c = eta * inner
+    dc = inner - eta * v2
     f = n_term * (n_term - 2.0 * b * m_term) - c * m_term * m_term
     df = 2.0 * (n_term - b * m_term) * dn - 2.0 * (b * n_term + c * m_term) * dm - m_term * m_term * dc
     scale = n_term * n_term + np.abs(2.0 * b * n_term * m_term) + np.abs(c) * m_term * m_term
-    if np.any(hover):
-        v2 = v_theta * v_theta
-        sv = drag_to_lift * v_theta
-        one_minus = 1.0 - eta
+    at = np.flatnonzero(hover)
+    if at.size:
+        # Only the hover stations (a large batch holds few of them).
+        v2, one_minus, eta, m_term, dm = v2[at], one_minus[at], eta[at], m_term[at], dm[at]
+        sv = drag_to_lift[at] * v_theta[at]
         q = 4.0 * eta - 1.0
         terms = (v2 * one_minus * q * q, sv * q * m_term, eta * m_term * m_term)
-        cubic = v2 * (terms[0] + terms[1] - terms[2])
-        dcubic = v2 * (v2 * q * (8.0 * one_minus - q) + sv * (4.0 * m_term + q * dm)
+        f[at] = v2 * (terms[0] + terms[1] - terms[2])
+        df[at] = v2 * (v2 * q * (8.0 * one_minus - q) + sv * (4.0 * m_term + q * dm)
                        - m_term * (m_term + 2.0 * eta * dm))
-        f = np.where(hover, cubic, f)
-        df = np.where(hover, dcubic, df)
-        scale = np.where(hover, v2 * (np.abs(terms[0]) + np.abs(terms[1]) + np.abs(terms[2])), scale)
+        scale[at] = v2 * (np.abs(terms[0]) + np.abs(terms[1]) + np.abs(terms[2]))
     return f, df, scale
 
 
@@ -103,7 +114,10 @@ def solve_eta2_flagged(v_axial, v_theta, lam, cl, cd):
     for ok, _, _, _ in _domain_checks(*arrays):
         invalid |= ~ok
     benign = (0.0, 1.0, 1.0, 1.0, 0.01)  # hover, loaded: lam > V_theta C_d/(2 C_l)
-    flat = [np.where(invalid, value, a).ravel() for value, a in zip(benign, arrays)]
+    if invalid.any():
+        flat = [np.where(invalid, value, a).ravel() for value, a in zip(benign, arrays)]
+    else:
+        flat = [a.ravel() for a in arrays]
     eta, converged = _solve_flat(flat[0], flat[1], flat[2], flat[4] / flat[3])
     return eta.reshape(invalid.shape), invalid | ~converged.reshape(invalid.shape)
 
@@ -117,9 +131,11 @@ def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
     hover = v_axial * lam == 0.0
     lo = np.full(n, 0.5)
     hi = np.ones(n)
-    f_lo, _, _ = _bracket_function(lo, v_axial, v_theta, lam, drag_to_lift, hover)
-    # Exact values at eta = 1 (hand derivations, asserted in tools/derive_quartic.py:derive): P(1) away from hover, C(1) in it.
+    # Exact values at the bracket ends (hand derivations, asserted in tools/derive_quartic.py:derive):
+    # P(1/2) > 0 (C(1/2) = 2 P(1/2) in hover), P(1) away from hover, C(1) in it.
     sv = drag_to_lift * v_theta
+    f_lo = 0.25 * v_theta * (v_theta**2 + v_axial**2) * (v_theta + 2.0 * drag_to_lift * v_axial)
+    f_lo = np.where(hover, 2.0 * f_lo, f_lo)
     f_hi = np.where(hover, 2.0 * v_theta**2 * (lam + sv) * (sv - 2.0 * lam),
                     -lam * v_axial * (v_axial + 2.0 * sv) * (lam + v_axial + sv))
     unloaded = hover & ~(f_hi < 0.0)
@@ -129,16 +145,77 @@ def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
     converged = unloaded.copy()
     if active.size == 0:
         return eta, converged
-    x0 = np.clip(false_position(lo[active], hi[active], f_lo[active], f_hi[active]), 0.5 + 1e-3, 1.0 - 1e-12)
+    lo, hi, f_lo, f_hi = lo[active], hi[active], f_lo[active], f_hi[active]
+    slopes = None
+    if active.size <= _SCAN_MAX:
+        lo, hi, f_lo, f_hi, slopes = _scan_bracket(active, lo, hi, f_lo, f_hi, v_axial, v_theta, lam, drag_to_lift,
+                                                   hover)
+    x0 = np.clip(false_position(lo, hi, f_lo, f_hi), lo + 2e-3 * (hi - lo), hi - 1e-12)
+    if slopes is not None:
+        x0 = _hermite_root(lo, hi, f_lo, f_hi, *slopes, x0)
+    if active.size > _SCAN_MAX:
+        # The Newton point from eta = 1 (lightly loaded stations have their root close to 1) where it
+        # lies in the bracket: a pass less on average than the false-position point.
+        at = active
+        f_1, df_1, _ = _bracket_function(hi, v_axial[at], v_theta[at], lam[at], drag_to_lift[at], hover[at])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            newton = 1.0 - f_1 / df_1
+        x0 = np.where((newton > 0.5) & (newton < 1.0), newton, x0)
 
     def function(x, idx):
         at = active[idx]
         return _bracket_function(x, v_axial[at], v_theta[at], lam[at], drag_to_lift[at], hover[at])
 
-    result = bracketed_newton(function, lo[active], hi[active], f_lo[active], x0, max_iter=_MAX_ITERATIONS)
+    result = bracketed_newton(function, lo, hi, f_lo, x0, max_iter=_MAX_ITERATIONS, quadratic_stop=True)
     eta[active] = result.x
     converged[active] = result.converged
     return eta, converged
+
+
+def _scan_bracket(active, lo, hi, f_lo, f_hi, v_axial, v_theta, lam, drag_to_lift, hover):
+    """Narrow each bracket [0.5, 1] to the grid interval of width :data:`_SCAN_STEP` with the sign change.
+
+    One vectorised evaluation on the grid replaces the first Newton passes: worth it for a few
+    designs (the passes cost Python overhead, not arithmetic), not for large batches.  The
+    bracketed function has exactly one root in (0.5, 1), so its first sign change is the root.
+    """
+    grid = _SCAN_GRID
+    at = np.repeat(active, grid.size)
+    values, derivatives, _ = _bracket_function(np.tile(grid, active.size), v_axial[at], v_theta[at], lam[at],
+                                               drag_to_lift[at], hover[at])
+    values = values.reshape(active.size, grid.size)
+    values = np.concatenate([f_lo[:, None], values, f_hi[:, None]], axis=1)
+    points = np.concatenate([[0.5], grid, [1.0]])
+    # First grid point where the function is no longer positive (f(1) <= 0 for every active station).
+    first = np.argmax(values <= 0.0, axis=1)
+    first = np.maximum(first, 1)
+    rows = np.arange(active.size)
+    # The slopes at the grid points (unknown at the bracket ends 0.5 and 1: NaN).
+    slopes = np.full((active.size, grid.size + 2), np.nan)
+    slopes[:, 1:-1] = derivatives.reshape(active.size, grid.size)
+    return (points[first - 1], points[first], values[rows, first - 1], values[rows, first],
+            (slopes[rows, first - 1], slopes[rows, first]))
+
+
+def _hermite_root(lo, hi, f_lo, f_hi, d_lo, d_hi, x0):
+    """Root of the cubic Hermite interpolant of ``f`` on each narrowed bracket, by two Newton steps from ``x0``.
+
+    On a bracket of width 0.01 it is within ~1e-9 of the root, so the Newton solve needs one pass
+    less than from the false-position point; where it is not a finite point inside the bracket (or a
+    slope is unknown), ``x0`` is kept.
+    """
+    width = hi - lo
+    m_lo, m_hi = d_lo * width, d_hi * width
+    t = (x0 - lo) / width
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for _ in range(2):
+            u = 1.0 - t
+            value = ((1.0 + 2.0 * t) * u * u * f_lo + t * u * u * m_lo + t * t * (3.0 - 2.0 * t) * f_hi
+                     - t * t * u * m_hi)
+            slope = 6.0 * t * u * (f_hi - f_lo) + u * (1.0 - 3.0 * t) * m_lo + t * (3.0 * t - 2.0) * m_hi
+            t = t - value / slope
+        x = lo + t * width
+    return np.where(np.isfinite(x) & (x > lo) & (x < hi), x, x0)
 
 
 def solve_eta2(v_axial, v_theta, lam, cl, cd, index_names=None):

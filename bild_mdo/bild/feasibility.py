@@ -92,8 +92,11 @@ def station_details(bad, arrays):
     """Details of a station check: the first failing station of each node, the values there, the count.
 
     Returns a dict for :func:`report_infeasible`: ``station``, then ``arrays``
-    at that station, then ``failing stations``.
+    at that station, then ``failing stations``; empty where no station fails (the details are
+    shown only for failing nodes, and this runs on every call).
     """
+    if not np.any(bad):
+        return {}
     station = np.argmax(bad, axis=1)
     values = {label: np.take_along_axis(np.broadcast_to(values, bad.shape), station[:, None], axis=1)[:, 0]
               for label, values in arrays.items()}

@@ -3,7 +3,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.blade_element import declare_section_options
-from bild_mdo.bem.prandtl import loss_inputs, loss_partials, prandtl_loss
+from bild_mdo.bem.prandtl import loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import add_inputs, add_outputs
@@ -133,11 +133,23 @@ class MomentumLoadsComp(om.ExplicitComponent):
         return unloaded
 
     def compute(self, inputs, outputs):
-        loss, _, _, _, v_x, _, omega, t_no_f, q_no_f = self._terms(inputs)
-        thrust, torque = t_no_f * loss.F, q_no_f * loss.F
+        if np.iscomplexobj(inputs["phi"]):
+            loss, _, _, _, v_x, _, omega, t_no_f, q_no_f = self._terms(inputs)
+            loss = loss.F
+        else:
+            # Only F: its partials are needed in compute_partials alone.
+            u_axial, u_t, r = inputs["u_axial"], inputs["u_theta"], inputs["radii"]
+            v_x = inputs["v_axial"][:, None]
+            rho = inputs["rho"][:, None]
+            omega = RPM_TO_RAD_PER_S * inputs["rpm"][:, None]
+            t_no_f = 4.0 * np.pi * rho * u_axial * (u_axial - v_x) * r
+            q_no_f = 2.0 * np.pi * rho * u_axial * u_t * r ** 2
+            loss, _ = prandtl_loss_and_dphi(inputs["phi"], r, inputs["radius"][:, None], inputs["hub_radius"][:, None],
+                                            self.options["num_blades"], self.options["loss_model"])
+        thrust, torque = t_no_f * loss, q_no_f * loss
         unloaded = self._unloaded(torque)[:, None]
         thrust, torque = np.where(unloaded, 1.0, thrust), np.where(unloaded, 1.0, torque)
-        outputs["loss_factor"] = loss.F
+        outputs["loss_factor"] = loss
         outputs["dthrust_dr"] = thrust
         outputs["dtorque_dr"] = torque
         outputs["denergy_loss_dr"] = omega * torque - v_x * thrust

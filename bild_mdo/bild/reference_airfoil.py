@@ -3,6 +3,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.airfoil.max_lift_to_drag_table import max_lift_to_drag_tabulated
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_node, node_wrt_node
 
@@ -31,6 +32,13 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
     ``Re_ref`` by a few percent only, to which the max-L/D point of a smooth
     polar is weakly sensitive.  A polar that does not vary with Mach number
     is queried without it (exactly the Reynolds-only point).
+
+    The point is the exact root of the polar's ``d(C_l/C_d)/d(alpha) = 0``;
+    for a polar that varies with Reynolds number only it is found by
+    :func:`~bild_mdo.airfoil.max_lift_to_drag_table.max_lift_to_drag_tabulated`
+    (the same Newton solve, warm-started from a table built once per polar),
+    and ``compute_partials`` reuses the point ``compute`` found at the same
+    inputs.
 
     A polar that varies along the span
     (:class:`~bild_mdo.airfoil.spanwise.SpanwisePolar`, ``polar.varies_along_span``)
@@ -86,6 +94,7 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
         self._polar = default_polar() if polar is None else polar
         self._spanwise = bool(self._polar.varies_along_span)
         self._mach = bool(self._polar.varies_with_mach)
+        self._last = None
         add_inputs(self, ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu"))
         add_inputs(self, ("speed_of_sound",))
         self.add_output("reynolds_ref", val=np.full(nn, 3e5), units=None,
@@ -122,23 +131,27 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
 
     def _flow(self, inputs):
         """``W0``, ``Re_ref`` and ``M_ref`` of the reference station, after the domain checks."""
-        for name in _REYNOLDS_INPUTS + ("speed_of_sound",):
-            value = np.real(inputs[name])
-            bad = ~np.isfinite(value)
-            if np.any(bad):
-                node = int(np.flatnonzero(bad)[0])
-                raise om.AnalysisError(f"{self.msginfo}: {name} must be finite for the reference Reynolds "
-                                       f"number, got {float(value[node])!r} at node {node}")
+        names = _REYNOLDS_INPUTS + ("speed_of_sound",)
+        # One check of all inputs at once (this runs for every design); the messages name the first failure.
+        values = np.real(np.stack([inputs[name] for name in names]))
+        if not np.isfinite(values).all():
+            for row, name in enumerate(names):
+                bad = ~np.isfinite(values[row])
+                if np.any(bad):
+                    node = int(np.flatnonzero(bad)[0])
+                    raise om.AnalysisError(f"{self.msginfo}: {name} must be finite for the reference Reynolds "
+                                           f"number, got {float(values[row, node])!r} at node {node}")
         v_x = inputs["v_axial"]
         v_t = inputs["v_theta_ref"]
         speed = np.sqrt(v_x ** 2 + v_t ** 2)
-        if np.any(~(np.real(speed) > 0.0)):
+        if not (np.real(speed) > 0.0).all():
             raise om.AnalysisError(
                 f"{self.msginfo}: the reference station has no inflow (v_axial = 0 and rpm = 0); "
                 "give a positive rotor speed")
-        for name in ("ref_chord", "rho", "mu", "speed_of_sound"):
-            if np.any(~(np.real(inputs[name]) > 0.0)):
-                raise om.AnalysisError(f"{self.msginfo}: {name} must be positive, got {np.real(inputs[name])}")
+        if not (values[2:] > 0.0).all():
+            for row, name in enumerate(names):
+                if row >= 2 and not np.all(values[row] > 0.0):
+                    raise om.AnalysisError(f"{self.msginfo}: {name} must be positive, got {values[row]}")
         return speed, inputs["rho"] * speed * inputs["ref_chord"] / inputs["mu"], speed / inputs["speed_of_sound"]
 
     def _max_lift_to_drag(self, reynolds, mach, inputs):
@@ -152,14 +165,24 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
             reynolds = reynolds[:, None]
             kwargs = {name: value[:, None] for name, value in kwargs.items()}
             kwargs["radial_fraction"] = fractions
+        # compute_partials reuses the point compute found at the same (real) arguments.
+        key = tuple(np.real(x).tobytes() for x in (reynolds, *kwargs.values()))
+        if self._last is not None and self._last[0] == key:
+            return self._last[1]
         try:
-            return self._polar.max_lift_to_drag(reynolds, **kwargs)
+            if kwargs:
+                point = self._polar.max_lift_to_drag(reynolds, **kwargs)
+            else:
+                point = max_lift_to_drag_tabulated(self._polar, reynolds)
         except ValueError as err:
             raise om.AnalysisError(f"{self.msginfo}: no maximum-L/D point at the reference "
                                    f"Reynolds number: {err}") from err
+        self._last = (key, point)
+        return point
 
     def compute(self, inputs, outputs):
         _, reynolds, mach = self._flow(inputs)
+        self._last = None
         point = self._max_lift_to_drag(reynolds, mach, inputs)
         outputs["reynolds_ref"] = reynolds
         outputs["mach_ref"] = mach

@@ -1,8 +1,10 @@
 """Induced velocities at the reference station from its solved inflow angle (Eq. (8) with F)."""
+import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.blade_element import add_section_inputs
-from bild_mdo.bem.inflow_residual import induced_velocities
+from bild_mdo.bem.inflow_residual import induced_velocities, sign_of_sine
+from bild_mdo.bem.prandtl import prandtl_loss_and_dphi
 from bild_mdo.bild.reference_station import (REFERENCE_INPUTS, declare_reference_options, reference_section,
                                              section_partials, section_wrt)
 from bild_mdo.utils.options import add_outputs
@@ -63,9 +65,30 @@ class ReferenceInducedVelocityComp(om.ExplicitComponent):
         return section, vel
 
     def compute(self, inputs, outputs):
-        _, vel = self._velocities(inputs)
-        outputs["u_axial_ref"] = vel.u_axial
-        outputs["u_theta_ref"] = vel.u_theta
+        values = None if np.iscomplexobj(inputs["phi_ref"]) else self._values(inputs)
+        if values is None:
+            # Complex step, or a value that is not finite (induced_velocities raises the error).
+            _, vel = self._velocities(inputs)
+            values = vel.u_axial, vel.u_theta
+        outputs["u_axial_ref"], outputs["u_theta_ref"] = values
+
+    def _values(self, inputs):
+        """``u_axial, u_theta`` of Eq. (8) alone (real inputs; the partials in compute_partials), or None."""
+        b, model = self.options["num_blades"], self.options["loss_model"]
+        phi, v_x, v_t = inputs["phi_ref"], inputs["v_axial"], inputs["v_theta_ref"]
+        r_ref, cl, cd = inputs["ref_radius"], inputs["cl_star"], inputs["cd_star"]
+        sigma = b * inputs["ref_chord"] / (2.0 * np.pi * r_ref)
+        loss, _ = prandtl_loss_and_dphi(phi, r_ref, inputs["radius"], inputs["hub_radius"], b, model)
+        s, c = np.sin(phi), np.cos(phi)
+        n_term = sigma * (cl * s + cd * c)
+        m_term = sigma * (cl * c - cd * s)
+        with np.errstate(all="ignore"):
+            denominator = 4.0 * loss * (sign_of_sine(phi) * s) * c + n_term
+            u_theta = 2.0 * v_t * n_term / denominator
+            u_axial = v_x + v_t * m_term / denominator
+        if not (np.all(np.isfinite(u_axial)) and np.all(np.isfinite(u_theta))):
+            return None
+        return u_axial, u_theta
 
     def compute_partials(self, inputs, partials):
         model = self.options["loss_model"]

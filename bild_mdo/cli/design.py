@@ -8,6 +8,7 @@ import numpy as np
 from bild_mdo import validation
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.chord import CHORD_FORMS
+from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade
@@ -54,6 +55,9 @@ def add_design_arguments(parser):
                         help="back-compute the chord from the thrust (Eq. (31)) or the torque balance")
     parser.add_argument("--root-chord-correction", type=float, default=None, metavar="K",
                         help="k of the root-chord correction, Eq. (32) [-]; omit for none")
+    parser.add_argument("--section-point", choices=SECTION_POINTS, default="reference",
+                        help="'reference': every station at the max-L/D point of the reference Reynolds number "
+                             "(the paper); 'local': each station minimises cd/cl at its own load and Reynolds number")
     out = parser.add_argument_group("output files")
     out.add_argument("--csv", metavar="FILE", help="write the geometry table r [m], chord [m], twist [deg] "
                      "(a batch writes FILE_<i>.csv per design)")
@@ -123,7 +127,7 @@ def run_design(args, out):
     polar = airfoil_polar("--airfoil", args.airfoil)
     result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=polar,
                           num_radial=num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
-                          root_chord_correction=args.root_chord_correction)
+                          root_chord_correction=args.root_chord_correction, section_point=args.section_point)
     problem = _zero_chord_message(result)
     if problem and (files["--csv"] or files["--json"] or files["--qprop"]):
         raise ValueError(f"{problem} (no geometry file written)")

@@ -15,10 +15,11 @@ from bild_mdo.io.airfoil import airfoil_text
 from bild_mdo.optimization.problem import OPTIMIZERS
 from bild_mdo.plots.verification import require_matplotlib, save_figures
 from bild_mdo.airfoil.text import DEFAULT_AIRFOIL, sweep_polar
-from bild_mdo.verification.case_functions import bild_batch, optimize_case, require_optimizer
+from bild_mdo.verification.case_functions import bild_batch, optimize_case, optimize_cases, require_optimizer
 from bild_mdo.verification.cases import SweepSpec, check_workers
 from bild_mdo.verification.executors import check_scheduler_address
-from bild_mdo.verification.runner import default_db_path, run_sweep, sweep_summary, verification_table
+from bild_mdo.verification.runner import (DEFAULT_CHUNK_SIZE, default_db_path, run_sweep, sweep_summary,
+                                          verification_table)
 from bild_mdo.verification.statistics import format_table3
 from bild_mdo.verification.store import ResultsStore
 from bild_mdo.verification.store_file import check_store_path
@@ -75,10 +76,13 @@ def add_verify_arguments(parser):
     parser.add_argument("--figures", metavar="DIR", default=None,
                         help="write Fig. 4 and Fig. 5 as PNG files into DIR (needs bild-mdo[plot])")
     parser.add_argument("--no-progress", action="store_true", help="no progress report on stderr")
+    parser.add_argument("--chunk-size", type=int, default=DEFAULT_CHUNK_SIZE, metavar="N",
+                        help="cases per worker task, optimised together in lockstep (one vectorised BEM model; "
+                             f"each case as if alone); stored when the task ends (default: {DEFAULT_CHUNK_SIZE})")
     return parser
 
 
-def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_case):
+def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_case, optimize_chunk_fn=None):
     """Run the sweep from parsed ``verify`` options and print the Table 3 reproduction.
 
     Parameters
@@ -91,6 +95,10 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
         The science of the sweep (see :func:`~bild_mdo.verification.runner.run_sweep`);
         the batched BILD design and the BEM optimisation of
         :mod:`~bild_mdo.verification.case_functions` by default.
+    optimize_chunk_fn : callable, optional
+        Optimises chunks of cases (``run_sweep``'s ``optimize_chunk_fn``);
+        with the default ``optimize_fn``, the lockstep
+        :func:`~bild_mdo.verification.case_functions.optimize_cases`.
 
     Returns
     -------
@@ -114,6 +122,8 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
     out = sys.stdout if out is None else out
     airfoil = airfoil_text(getattr(args, "airfoil", DEFAULT_AIRFOIL))
     spec = SweepSpec(levels=args.levels, optimizer=args.optimizer, airfoil=airfoil)
+    if getattr(args, "chunk_size", 1) < 1:
+        raise ValueError(f"--chunk-size must be >= 1, got {args.chunk_size}")
     if args.scheduler is None:
         check_workers(args.workers)
     else:
@@ -129,8 +139,11 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
         require_matplotlib()
         _check_figures_folder(args.figures)
     check_store_path(db_path)
+    if optimize_chunk_fn is None and optimize_fn is optimize_case:
+        optimize_chunk_fn = optimize_cases
     run = run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=args.workers, scheduler=args.scheduler,
-                    progress=not args.no_progress)
+                    progress=not args.no_progress, optimize_chunk_fn=optimize_chunk_fn,
+                    chunk_size=getattr(args, "chunk_size", DEFAULT_CHUNK_SIZE))
     with ResultsStore(db_path, spec, writer=False) as store:
         rows = store.rows()
     table, optimality_error = verification_table(rows)

@@ -5,12 +5,13 @@ Public API
 BEMOptimizationGroup
     Parameterisation + :class:`~bild_mdo.bem.BEMAnalysisGroup` + normalised
     objective ``E/E_ref`` and thrust constraint ``T/T* - 1``.
-ParameterizationComp, NormalizedResponsesComp
+ParameterizationComp, NormalizedResponsesComp, ResponseSumsComp
     Its components (``parameterization.py``, ``responses.py``).
 OPTIMIZERS, build_optimization_problem, set_optimization_case
     A ready ``om.Problem`` with SLSQP, Ipopt or SNOPT, and loading cases into it (``problem.py``).
-run_optimization, optimize_rotor, OptimizationResult, trim_to_thrust
-    Running it (``run.py``).
+run_optimization, optimize_rotor, optimize_rotors, OptimizationResult, trim_to_thrust
+    Running it (``run.py``); many cases at once in lockstep through one vectorised model
+    (``lockstep.py``, ``batch_model.py``).
 hessian_scaling, lagrangian_hessian_diagonal
     Design-variable scaling (``scaling.py``).
 ideal_energy_loss, linear_initial_design, twist_bounds
@@ -27,14 +28,16 @@ from bild_mdo.optimization.parameterization import (PARAMETERIZATIONS, Parameter
                                                     design_value_fractions, fit_design_values,
                                                     parameterization_matrix)
 from bild_mdo.optimization.problem import OPTIMIZERS, build_optimization_problem, set_optimization_case
-from bild_mdo.optimization.responses import NormalizedResponsesComp
-from bild_mdo.optimization.run import OptimizationResult, optimize_rotor, run_optimization, trim_to_thrust
+from bild_mdo.optimization.responses import NormalizedResponsesComp, ResponseSumsComp
+from bild_mdo.optimization.run import (OptimizationResult, optimize_rotor, optimize_rotors, run_optimization,
+                                      trim_to_thrust)
 from bild_mdo.optimization.scaling import hessian_scaling, lagrangian_hessian_diagonal
 
 __all__ = [
     "BEMOptimizationGroup", "IpoptDriver", "NormalizedResponsesComp", "OPTIMIZERS", "OptimizationResult",
     "PARAMETERIZATIONS", "ParameterizationComp", "bspline_matrix", "build_optimization_problem",
     "design_value_fractions", "fit_design_values", "hessian_scaling", "ideal_energy_loss",
-    "lagrangian_hessian_diagonal", "linear_initial_design", "optimize_rotor", "parameterization_matrix",
+    "lagrangian_hessian_diagonal", "linear_initial_design", "optimize_rotor", "optimize_rotors",
+    "parameterization_matrix", "ResponseSumsComp",
     "run_optimization", "set_optimization_case", "trim_to_thrust", "twist_bounds",
 ]

@@ -53,6 +53,11 @@ class BEMOptimizationGroup(om.Group):
         flood the output and an error would end a run that recovers on its
         own.  The state at the optimum is checked instead
         (:attr:`~bild_mdo.optimization.run.OptimizationResult.invalid_stations`).
+    warm_start : bool
+        Start the inflow solve of each evaluation from the previous one's
+        phi where its bracket still holds (``BEMAnalysisGroup``'s option;
+        the same root to solver tolerance).  Default True: an optimiser
+        evaluates nearby designs one after the other.
 
     Inputs
     ------
@@ -91,6 +96,8 @@ class BEMOptimizationGroup(om.Group):
         self.options.declare("order", types=int, default=4, desc="B-spline order (degree + 1)")
         self.options.declare("on_invalid", default="ignore", values=ON_INVALID,
                              desc="invalid BEM flow states at a trial point: nothing (default), a warning or an error")
+        self.options.declare("warm_start", types=bool, default=True,
+                             desc="start each inflow solve from the previous evaluation's phi where its bracket holds")
 
     def setup(self):
         opts = self.options
@@ -103,7 +110,7 @@ class BEMOptimizationGroup(om.Group):
         self.add_subsystem("bem",
                            BEMAnalysisGroup(**sizes(opts), num_blades=opts["num_blades"],
                                             polar=opts["polar"], loss_model=opts["loss_model"],
-                                            on_invalid=opts["on_invalid"]),
+                                            on_invalid=opts["on_invalid"], warm_start=opts["warm_start"]),
                            promotes_inputs=["v_axial", "rpm", "radius", "hub_radius", "altitude", "chord", "twist"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
         self.add_subsystem("responses", NormalizedResponsesComp(num_nodes=nn),

@@ -187,8 +187,9 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     driver = make_driver(optimizer, tol, maxiter, print_level)
 
     prob = om.Problem(reports=False)
+    polar = resolve_polar(polar)
     group = BEMOptimizationGroup(num_nodes=1, num_radial=num_radial, num_blades=num_blades,
-                                 polar=resolve_polar(polar), loss_model=loss_model,
+                                 polar=polar, loss_model=loss_model,
                                  parameterization=parameterization, num_cp=num_cp, order=order)
     prob.model.add_subsystem("rotor", group, promotes=["*"])
     prob.model.add_design_var("chord_ratio_cp", lower=CHORD_RATIO_BOUNDS[0], upper=CHORD_RATIO_BOUNDS[1],
@@ -208,6 +209,9 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
         "matrix": parameterization_matrix(parameterization, num_radial, num_cp, order),
         "fractions": design_value_fractions(parameterization, num_radial, num_cp, order),
         "twist_bounds": TWIST_LIMITS,
+        # What a batched twin of this problem needs (bild_mdo.optimization.lockstep) and the SLSQP engine reads.
+        "num_cp": num_cp, "polar": polar, "loss_model": loss_model, "tol": tol, "maxiter": maxiter,
+        "approx_totals": approx_totals,
     }
     if v_axial is not None:
         set_optimization_case(prob, v_axial, rpm, radius, hub_radius, thrust_target, altitude, initial=initial,
@@ -216,7 +220,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     return prob
 
 
-def _check_case(v_axial, rpm, radius, hub_radius, thrust_target, altitude):
+def check_case(v_axial, rpm, radius, hub_radius, thrust_target, altitude):
     values = dict(v_axial=v_axial, rpm=rpm, radius=radius, hub_radius=hub_radius, thrust_target=thrust_target,
                   altitude=altitude)
     for name, value in values.items():
@@ -256,7 +260,43 @@ def set_optimization_case(prob, v_axial, rpm, radius, hub_radius, thrust_target,
             float(v) for v in (v_axial, rpm, radius, hub_radius, thrust_target, altitude))
     except TypeError:
         raise ValueError("v_axial, rpm, radius, hub_radius, thrust_target and altitude must be numbers") from None
-    _check_case(v_axial, rpm, radius, hub_radius, thrust_target, altitude)
+    check_case(v_axial, rpm, radius, hub_radius, thrust_target, altitude)
+    values = case_design_values(meta, v_axial, rpm, radius, hub_radius, thrust_target, altitude, initial=initial,
+                                bild_chord=bild_chord, bild_twist=bild_twist, reference_chord=reference_chord,
+                                energy_loss_ref=energy_loss_ref)
+    meta["twist_bounds"] = values["twist_bounds"]
+    chord_cp, twist_cp, energy_loss_ref = values["chord_ratio_cp"], values["twist_cp"], values["energy_loss_ref"]
+    prob.set_val("v_axial", v_axial, units="m/s")
+    prob.set_val("rpm", rpm, units="rpm")
+    prob.set_val("radius", radius, units="m")
+    prob.set_val("hub_radius", hub_radius, units="m")
+    prob.set_val("altitude", altitude, units="m")
+    prob.set_val("thrust_target", thrust_target, units="N")
+    prob.set_val("energy_loss_ref", energy_loss_ref, units="W")
+    prob.set_val("chord_ratio_cp", chord_cp[None, :])
+    prob.set_val("twist_cp", twist_cp[None, :], units="rad")
+
+
+def case_design_values(meta, v_axial, rpm, radius, hub_radius, thrust_target, altitude, *, initial="bild",
+                       bild_chord=None, bild_twist=None, reference_chord=None, energy_loss_ref=None):
+    """Initial design values, twist bounds and objective reference of one (checked) case.
+
+    Parameters
+    ----------
+    meta : dict
+        ``prob._bild_optimization`` of a problem from :func:`build_optimization_problem`.
+    v_axial, rpm, radius, hub_radius, thrust_target, altitude : float
+        The case, already checked.
+    initial, bild_chord, bild_twist, reference_chord, energy_loss_ref
+        See :func:`build_optimization_problem`.
+
+    Returns
+    -------
+    dict
+        ``chord_ratio_cp``, ``twist_cp`` (ndarray, shape (ncp,); within the
+        bounds), ``twist_bounds`` (lower, upper arrays, rad) and
+        ``energy_loss_ref`` (W).
+    """
     nr = meta["num_radial"]
     rho = float(isa(altitude).rho)
     if initial == "bild":
@@ -273,21 +313,10 @@ def set_optimization_case(prob, v_axial, rpm, radius, hub_radius, thrust_target,
         raise ValueError(f"initial chord and twist must have {nr} stations, got {chord0.shape} and {twist0.shape}")
     if not (np.all(np.isfinite(chord0)) and np.all(np.isfinite(twist0))):
         raise ValueError("initial chord and twist must be finite")
-
     lower, upper = twist_bounds(v_axial, rpm, radius, hub_radius, meta["fractions"])
-    meta["twist_bounds"] = (lower, upper)
     matrix = meta["matrix"]
-    chord_cp = np.clip(fit_design_values(matrix, chord0 / radius), *CHORD_RATIO_BOUNDS)
-    twist_cp = np.clip(fit_design_values(matrix, twist0), lower, upper)
     if energy_loss_ref is None:
         energy_loss_ref = ideal_energy_loss(thrust_target, v_axial, radius, hub_radius, rho)
-
-    prob.set_val("v_axial", v_axial, units="m/s")
-    prob.set_val("rpm", rpm, units="rpm")
-    prob.set_val("radius", radius, units="m")
-    prob.set_val("hub_radius", hub_radius, units="m")
-    prob.set_val("altitude", altitude, units="m")
-    prob.set_val("thrust_target", thrust_target, units="N")
-    prob.set_val("energy_loss_ref", energy_loss_ref, units="W")
-    prob.set_val("chord_ratio_cp", chord_cp[None, :])
-    prob.set_val("twist_cp", twist_cp[None, :], units="rad")
+    return {"chord_ratio_cp": np.clip(fit_design_values(matrix, chord0 / radius), *CHORD_RATIO_BOUNDS),
+            "twist_cp": np.clip(fit_design_values(matrix, twist0), lower, upper),
+            "twist_bounds": (lower, upper), "energy_loss_ref": float(energy_loss_ref)}

@@ -70,3 +70,48 @@ class NormalizedResponsesComp(om.ExplicitComponent):
         partials["energy_loss_ratio", "energy_loss_ref"] = -inputs["energy_loss"] / e_ref**2
         partials["thrust_residual", "thrust"] = 1.0 / t_star
         partials["thrust_residual", "thrust_target"] = -inputs["thrust"] / t_star**2
+
+
+class ResponseSumsComp(om.ExplicitComponent):
+    """Sums over the designs of the objective and the thrust constraint, for one reverse solve per response.
+
+    The designs of a batch do not interact, so ``d(sum_k f_k)/dx_i = df_i/dx_i``
+    for the design values ``x_i`` of design ``i``: the total derivative of
+    each sum, one reverse linear solve, gives every design's gradient of that
+    response (:mod:`bild_mdo.optimization.lockstep`).
+
+    Options
+    -------
+    num_nodes : int
+        Number of designs / operating points (axis 0).
+
+    Inputs
+    ------
+    energy_loss_ratio[nn] (-), thrust_residual[nn] (-)
+        Objective ``E / E_ref`` and constraint ``T / T* - 1`` of every design.
+
+    Outputs
+    -------
+    energy_loss_ratio_sum (-), thrust_residual_sum (-)
+        Their sums over the designs.
+    """
+
+    def initialize(self):
+        declare_size_options(self.options, radial=False)
+
+    def setup(self):
+        nn = self.options["num_nodes"]
+        for name, desc in (("energy_loss_ratio", "objective E / E_ref"),
+                           ("thrust_residual", "thrust constraint T / T* - 1")):
+            self.add_input(name, val=np.zeros(nn), units=None, desc=f"{desc} of every design")
+            self.add_output(f"{name}_sum", val=0.0, units=None, desc=f"sum over the designs of the {desc}")
+
+    def setup_partials(self):
+        nn = self.options["num_nodes"]
+        for name in ("energy_loss_ratio", "thrust_residual"):
+            self.declare_partials(f"{name}_sum", name, rows=np.zeros(nn, dtype=int), cols=np.arange(nn),
+                                  val=np.ones(nn))
+
+    def compute(self, inputs, outputs):
+        outputs["energy_loss_ratio_sum"] = np.sum(inputs["energy_loss_ratio"])
+        outputs["thrust_residual_sum"] = np.sum(inputs["thrust_residual"])

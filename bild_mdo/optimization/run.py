@@ -8,52 +8,21 @@ feasible by collective pitch alone.
 """
 from __future__ import annotations
 
-import contextlib
-import dataclasses
 import time
 
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bem.flow_states import FLOW_STATE_NAMES, INVALID_STATES
-from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS
-from bild_mdo.optimization.problem import build_optimization_problem, set_optimization_case
+from bild_mdo.optimization.batch_model import CASE_INPUTS, CaseSpec, ModelPool
+from bild_mdo.optimization.lockstep import DEFAULT_BATCH_SIZE, optimize_in_lockstep
+from bild_mdo.optimization.problem import (build_optimization_problem, case_design_values, check_case,
+                                           set_optimization_case)
+from bild_mdo.optimization.result import (ANALYSIS_FAILED, RESULT_QUANTITIES, THRUST_TOLERANCE, OptimizationResult,
+                                          count_invalid, invalid_flow_text, single_threaded_blas)
 from bild_mdo.optimization.scaling import CHORD_RATIO_REF, TWIST_REF, hessian_scaling, response_gradients
 
-#: Relative thrust-constraint violation above which a run counts as not converged.
-THRUST_TOLERANCE = 1.0e-6
-
-#: Performance quantities reported by :func:`run_optimization`.
-RESULT_QUANTITIES = tuple(PERFORMANCE_OUTPUTS)
-
-_ANALYSIS_FAILED = "BEM analysis failed at a trial point"
 _CASE_OPTIONS = ("initial", "bild_chord", "bild_twist", "reference_chord", "energy_loss_ref")
-_BLAS_THREADS = []
-
-
-def single_threaded_blas():
-    """Context limiting BLAS to one thread, when threadpoolctl is installed.
-
-    SciPy's SLSQP calls BLAS on small dense matrices; OpenBLAS's extra threads
-    then busy-wait and double the CPU time of every optimisation, which slows
-    a sweep that already runs one process per core.
-
-    Returns
-    -------
-    contextlib.AbstractContextManager
-    """
-    if not _BLAS_THREADS:
-        try:
-            from threadpoolctl import ThreadpoolController
-        except ImportError:
-            _BLAS_THREADS.append(None)
-        else:
-            _BLAS_THREADS.append(ThreadpoolController())
-    controller = _BLAS_THREADS[0]
-    if controller is None:
-        return contextlib.nullcontext()
-    return controller.limit(limits=1, user_api="blas")
 
 
 def trim_to_thrust(prob, tol=1.0e-12, max_iter=20):
@@ -107,64 +76,6 @@ def _apply_design_var_options(prob, ref_chord, ref_twist):
     prob.final_setup()
 
 
-@dataclasses.dataclass
-class OptimizationResult:
-    """Outcome of :func:`run_optimization` and :func:`optimize_rotor`.
-
-    Attributes
-    ----------
-    converged : bool
-        The optimiser reports success and ``|T/T* - 1| <= THRUST_TOLERANCE``.
-    status : str
-        The optimiser's exit message.
-    iterations : int
-        Major iterations of the optimiser.
-    model_evaluations : int
-        Model evaluations by the driver (OpenMDAO ``iter_count``).
-    wall_time : float
-        Time of the scaling step and the driver run (s), without set-up.
-    setup_time : float
-        Time to build and set up the problem (s); 0 when a problem was reused.
-    chord, twist : ndarray, shape (nr,)
-        Optimal geometry at the stations (m, rad).
-    performance : dict
-        Per-design BEM outputs at the optimum (float), one per entry of
-        :data:`bild_mdo.bem.metrics.METRICS`: ``thrust`` (N), ``torque``
-        (N m), ``power`` (W), ``efficiency``, ``energy_loss`` (W), ...
-    thrust_error : float
-        ``T/T* - 1`` at the optimum.
-    optimizer : str
-        Optimiser name.
-    flow_state : ndarray of int, shape (nr,)
-        Flow-state code of every station at the optimum (:mod:`bild_mdo.bem.flow_states`).
-    invalid_stations : int
-        Stations of the optimum in a flow state the momentum model does not
-        represent (:data:`~bild_mdo.bem.flow_states.INVALID_STATES`).  The
-        optimisation ignores such states at its trial points; a converged
-        optimum with ``invalid_stations > 0`` is reported (``status`` says so)
-        but not trusted by :attr:`flow_valid`.
-    """
-
-    converged: bool
-    status: str
-    iterations: int
-    model_evaluations: int
-    wall_time: float
-    setup_time: float
-    chord: np.ndarray
-    twist: np.ndarray
-    performance: dict
-    thrust_error: float
-    optimizer: str
-    flow_state: np.ndarray = dataclasses.field(default_factory=lambda: np.zeros(0, dtype=int))
-    invalid_stations: int = 0
-
-    @property
-    def flow_valid(self):
-        """True when every station of the optimum is in a valid flow state."""
-        return self.invalid_stations == 0
-
-
 def _driver_outcome(prob, optimizer):
     driver = prob.driver
     if optimizer == "slsqp":
@@ -198,6 +109,29 @@ def run_optimization(prob):
         ``setup_time`` is 0.
     """
     meta = prob._bild_optimization
+    if meta["optimizer"] == "slsqp":
+        return _slsqp(prob, restarts=0)
+    return _run_driver(prob)
+
+
+def _settings(meta, restarts):
+    return {"scaling": meta["scaling"], "parameterization": meta["parameterization"], "order": meta["order"],
+            "tol": meta["tol"], "maxiter": meta["maxiter"], "restarts": int(restarts),
+            "num_radial": meta["num_radial"]}
+
+
+def _slsqp(prob, restarts):
+    """The case loaded in a single-case problem, through the lockstep engine with one case."""
+    meta = prob._bild_optimization
+    spec = CaseSpec(inputs={name: float(prob.get_val(name, units=units)[0]) for name, units in CASE_INPUTS},
+                    chord_ratio_cp=prob.get_val("chord_ratio_cp")[0].copy(),
+                    twist_cp=prob.get_val("twist_cp", units="rad")[0].copy(), twist_bounds=meta["twist_bounds"])
+    with single_threaded_blas():
+        return optimize_in_lockstep(ModelPool(meta, base=prob), [spec], _settings(meta, restarts))[0]
+
+
+def _run_driver(prob):
+    meta = prob._bild_optimization
     optimizer = meta["optimizer"]
     start = time.perf_counter()
     try:
@@ -209,7 +143,7 @@ def run_optimization(prob):
             _apply_design_var_options(prob, *refs)
             prob.run_driver()
     except om.AnalysisError as exc:
-        success, status, iterations = False, f"{_ANALYSIS_FAILED}: {exc}", 0
+        success, status, iterations = False, f"{ANALYSIS_FAILED}: {exc}", 0
     else:
         success, status, iterations = _driver_outcome(prob, optimizer)
     wall_time = time.perf_counter() - start
@@ -219,7 +153,7 @@ def run_optimization(prob):
                      and all(np.isfinite(v) for v in performance.values()))
     # As for the performance above: the model holds the last point the driver evaluated, the optimum it returns.
     flow_state = np.rint(np.real(prob.get_val("bem.flow_state")[0])).astype(int)
-    invalid = int(np.isin(flow_state, INVALID_STATES).sum())
+    invalid = count_invalid(flow_state)
     if invalid:
         status = f"{status}; {invalid_flow_text(flow_state)}"
     return OptimizationResult(
@@ -230,33 +164,19 @@ def run_optimization(prob):
         invalid_stations=invalid)
 
 
-def invalid_flow_text(flow_state):
-    """One phrase on the stations of a design in an invalid flow state, e.g. ``'2 of 30 stations ... (4: ...)'``.
-
-    Parameters
-    ----------
-    flow_state : array_like of int, shape (nr,)
-        Flow-state codes of :mod:`bild_mdo.bem.flow_states`.
-
-    Returns
-    -------
-    str
-    """
-    flow_state = np.asarray(flow_state, dtype=int)
-    bad = np.flatnonzero(np.isin(flow_state, INVALID_STATES))
-    names = sorted({FLOW_STATE_NAMES[int(code)] for code in flow_state[bad]})
-    return (f"{bad.size} of {flow_state.size} stations in an invalid BEM flow state at the optimum "
-            f"({', '.join(names)}; stations {bad.tolist()})")
-
-
 def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0, *, problem=None, restarts=0,
                    **options):
     """Optimise one rotor for minimum energy loss at the required thrust (paper Sec. 5.1).
 
+    SLSQP runs through the lockstep engine (:mod:`bild_mdo.optimization.lockstep`)
+    with one case; Ipopt and SNOPT on their OpenMDAO drivers.
+
     Parameters
     ----------
-    v_axial, rpm, radius, hub_radius, thrust_target, altitude : float
-        The case (m/s, rpm, m, m, N, m).
+    v_axial, rpm, radius, hub_radius, thrust_target, altitude : float or array_like
+        The case (m/s, rpm, m, m, N, m).  Arrays (broadcast against each
+        other) optimise many cases together: see :func:`optimize_rotors`,
+        which then returns a list of results, one per case.
     problem : om.Problem, optional
         A problem from :func:`~bild_mdo.optimization.problem.build_optimization_problem`
         to reuse: its optimiser, parameterisation and sizes are kept and only
@@ -276,28 +196,32 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
 
     Returns
     -------
-    OptimizationResult
+    OptimizationResult or list of OptimizationResult
 
     Examples
     --------
     >>> result = optimize_rotor(0.0, 800.0, 1.0, 0.2, 420.0, initial="linear")  # doctest: +SKIP
     >>> result.converged, result.performance["figure_of_merit"]  # doctest: +SKIP
     """
+    case = (v_axial, rpm, radius, hub_radius, thrust_target, altitude)
+    if any(np.ndim(value) > 0 for value in case):
+        return optimize_rotors(*case, problem=problem, restarts=restarts, **options)
     start = time.perf_counter()
     if problem is None:
         prob = build_optimization_problem(v_axial, rpm, radius, hub_radius, thrust_target, altitude, **options)
         setup_time = time.perf_counter() - start
     else:
-        unknown = set(options) - set(_CASE_OPTIONS)
-        if unknown:
-            raise ValueError(f"with problem=..., only the case options {_CASE_OPTIONS} can be given; "
-                             f"got {sorted(unknown)}")
+        _check_case_options(options)
         set_optimization_case(problem, v_axial, rpm, radius, hub_radius, thrust_target, altitude, **options)
         prob, setup_time = problem, 0.0
+    if prob._bild_optimization["optimizer"] == "slsqp":
+        result = _slsqp(prob, restarts)
+        result.setup_time = setup_time
+        return result
     result = run_optimization(prob)
     failures = []
     for _ in range(int(restarts)):
-        if result.converged or result.status.startswith(_ANALYSIS_FAILED):
+        if result.converged or result.status.startswith(ANALYSIS_FAILED):
             break
         failures.append(result.status)
         again = run_optimization(prob)
@@ -309,3 +233,114 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
         result.status = f"{result.status} (after restarts from: {'; '.join(failures)})"
     result.setup_time = setup_time
     return result
+
+
+def _check_case_options(options):
+    unknown = set(options) - set(_CASE_OPTIONS)
+    if unknown:
+        raise ValueError(f"with problem=..., only the case options {_CASE_OPTIONS} can be given; got {sorted(unknown)}")
+
+
+def _per_case(value, count, shape, name):
+    """``value`` for each of ``count`` cases: one for all, or one per case (first axis)."""
+    if value is None or isinstance(value, str):
+        return [value] * count
+    array = np.asarray(value, dtype=float)
+    if array.shape == shape:
+        return [array] * count
+    if array.shape == (count,) + shape:
+        return list(array)
+    raise ValueError(f"{name} must have shape {shape} (all cases) or {(count,) + shape} (one per case), "
+                     f"got {array.shape}")
+
+
+def optimize_rotors(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0, *, problem=None, restarts=0,
+                    batch_size=DEFAULT_BATCH_SIZE, **options):
+    """Optimise many rotors in lockstep: :func:`optimize_rotor` with arrays for the case arguments.
+
+    The case arguments broadcast against each other (numpy rules) to ``n``
+    cases, taken in C order.  With SLSQP every case runs its own optimiser,
+    and all share one vectorised model evaluation per step
+    (:mod:`bild_mdo.optimization.lockstep`): each case gets the result it gets
+    alone, for a fraction of the time.  Ipopt and SNOPT optimise the cases
+    one after the other on their drivers.
+
+    Parameters
+    ----------
+    v_axial, rpm, radius, hub_radius, thrust_target, altitude : array_like
+        The cases (m/s, rpm, m, m, N, m).
+    problem : om.Problem, optional
+        A problem from :func:`~bild_mdo.optimization.problem.build_optimization_problem`
+        whose configuration to use; only the case options may be given then.
+    restarts : int
+        See :func:`optimize_rotor`.
+    batch_size : int
+        Cases optimised at the same time (SLSQP); when one finishes, the next starts.
+    **options
+        As for :func:`optimize_rotor`; ``bild_chord`` and ``bild_twist`` of
+        shape ``(num_radial,)`` (all cases) or ``(n, num_radial)``,
+        ``reference_chord`` and ``energy_loss_ref`` scalar or ``(n,)``.
+
+    Returns
+    -------
+    list of OptimizationResult
+        One per case, in order.  For SLSQP ``wall_time`` is each case's share
+        of the lockstep run, and ``setup_time`` its share of the set-up.
+    """
+    columns = [np.ravel(c) for c in np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in
+                                                            (v_axial, rpm, radius, hub_radius, thrust_target,
+                                                             altitude)))]
+    count = columns[0].size
+    case_options = {key: options.pop(key) for key in _CASE_OPTIONS if key in options}
+    start = time.perf_counter()
+    if problem is None:
+        problem = _configuration(options)
+    else:
+        _check_case_options(options)
+    setup_time = time.perf_counter() - start
+    meta = problem._bild_optimization
+    nr = meta["num_radial"]
+    per_case = {"initial": [case_options.get("initial", "bild")] * count}
+    for key, shape in (("bild_chord", (nr,)), ("bild_twist", (nr,)), ("reference_chord", ()),
+                       ("energy_loss_ref", ())):
+        per_case[key] = _per_case(case_options.get(key), count, shape, key)
+    if meta["optimizer"] != "slsqp":
+        return [optimize_rotor(*(float(c[k]) for c in columns), problem=problem, restarts=restarts,
+                               **{key: values[k] for key, values in per_case.items()}) for k in range(count)]
+    specs = []
+    for k in range(count):
+        case = [float(c[k]) for c in columns]
+        check_case(*case)
+        values = case_design_values(meta, *case, **{key: vals[k] for key, vals in per_case.items()})
+        inputs = dict(zip(("v_axial", "rpm", "radius", "hub_radius", "thrust_target", "altitude"), case),
+                      energy_loss_ref=values["energy_loss_ref"])
+        specs.append(CaseSpec(inputs, values["chord_ratio_cp"], values["twist_cp"], values["twist_bounds"]))
+    with single_threaded_blas():
+        results = optimize_in_lockstep(_pool(meta), specs, _settings(meta, restarts), batch_size)
+    for result in results:
+        result.setup_time += setup_time / count
+    return results
+
+
+# Set-up problems and batch models by configuration, reused by later calls in this process.
+_CONFIGURATIONS = {}
+_POOLS = {}
+
+
+def _configuration(options):
+    key = repr(sorted((k, id(v) if not isinstance(v, (str, int, float, type(None))) else v)
+                      for k, v in options.items()))
+    prob = _CONFIGURATIONS.get(key)
+    if prob is None:
+        prob = _CONFIGURATIONS[key] = build_optimization_problem(**options)
+    return prob
+
+
+def _pool(meta):
+    key = tuple(meta[k] if k != "polar" else id(meta[k]) for k in
+                ("num_radial", "num_blades", "polar", "loss_model", "parameterization", "num_cp", "order",
+                 "approx_totals"))
+    pool = _POOLS.get(key)
+    if pool is None:
+        pool = _POOLS[key] = ModelPool(meta)
+    return pool

@@ -75,25 +75,65 @@ def lagrangian_hessian_diagonal(prob, step=1.0e-6):
     meta = prob._bild_optimization
     x_c = prob.get_val("chord_ratio_cp")[0].copy()
     x_t = prob.get_val("twist_cp", units="rad")[0].copy()
+    result = hessian_diagonal_from_gradients(lambda c, t: response_gradients(prob, c, t), x_c, x_t,
+                                             meta["parameterization"], meta["order"], step)
+    prob.set_val("chord_ratio_cp", x_c[None, :])
+    prob.set_val("twist_cp", x_t[None, :], units="rad")
+    return result
+
+
+def hessian_diagonal_from_gradients(gradients, x_c, x_t, parameterization, order, step=1.0e-6):
+    """:func:`lagrangian_hessian_diagonal` from a gradient function instead of a problem.
+
+    Parameters
+    ----------
+    gradients : callable
+        ``gradients(x_chord, x_twist) -> (grad_energy, grad_thrust)`` as
+        :func:`response_gradients` returns them.
+    x_c, x_t : ndarray, shape (ncp,)
+        The design values (model units).
+    parameterization : {'stations', 'bspline'}
+    order : int
+        B-spline order (``'bspline'`` only).
+    step : float
+        Forward-difference step (model units).
+
+    Returns
+    -------
+    diagonal : ndarray, shape (2 ncp,)
+    multiplier : float
+    """
     n = x_c.size
-    g_e, g_t = response_gradients(prob, x_c, x_t)
+    g_e, g_t = gradients(x_c, x_t)
     lam = -float(g_e @ g_t) / float(g_t @ g_t)
     g0 = g_e + lam * g_t
-    stride = 1 if meta["parameterization"] == "stations" else meta["order"]
+    stride = 1 if parameterization == "stations" else order
     diag = np.zeros(2 * n)
     for which in range(2):
         for color in range(stride):
             dx = np.zeros(n)
             dx[color::stride] = step
             if which == 0:
-                g_e1, g_t1 = response_gradients(prob, x_c + dx, x_t)
+                g_e1, g_t1 = gradients(x_c + dx, x_t)
             else:
-                g_e1, g_t1 = response_gradients(prob, x_c, x_t + dx)
+                g_e1, g_t1 = gradients(x_c, x_t + dx)
             idx = which * n + np.arange(color, n, stride)
             diag[idx] = ((g_e1 + lam * g_t1) - g0)[idx] / step
-    prob.set_val("chord_ratio_cp", x_c[None, :])
-    prob.set_val("twist_cp", x_t[None, :], units="rad")
     return diag, lam
+
+
+def references_from_diagonal(diag, floor=1.0e-2):
+    """Design-variable references ``1 / sqrt(|H_ii|)`` from a Hessian diagonal (see :func:`hessian_scaling`).
+
+    Returns
+    -------
+    ref_chord, ref_twist : ndarray
+    """
+    n = diag.size // 2
+    refs = []
+    for part in (np.abs(diag[:n]), np.abs(diag[n:])):
+        refs.append(1.0 / np.sqrt(np.maximum(part, floor * np.median(part))))
+    return refs[0], refs[1]
 
 
 def hessian_scaling(prob, step=1.0e-6, floor=1.0e-2):
@@ -122,8 +162,4 @@ def hessian_scaling(prob, step=1.0e-6, floor=1.0e-2):
         The references (model units).
     """
     diag, _ = lagrangian_hessian_diagonal(prob, step)
-    n = diag.size // 2
-    refs = []
-    for part in (np.abs(diag[:n]), np.abs(diag[n:])):
-        refs.append(1.0 / np.sqrt(np.maximum(part, floor * np.median(part))))
-    return refs[0], refs[1]
+    return references_from_diagonal(diag, floor)

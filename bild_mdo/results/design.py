@@ -29,6 +29,7 @@ from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.chord import CHORD_FORMS
+from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.io.airfoil import resolve_airfoil
@@ -73,7 +74,7 @@ def _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius
 def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_radius_ratio=0.2,
                  ref_radius_ratio=0.5, ref_chord=None, altitude=0.0, num_blades=3, airfoil="naca4412",
                  num_radial=30, loss_model="tip_hub", chord_form="thrust", root_chord_correction=None,
-                 on_infeasible="raise", thrust=None):
+                 on_infeasible="raise", thrust=None, section_point="reference"):
     """Design the ideal rotor(s) for given operating points with the BILD method (paper Alg. 1).
 
     Scalars give one design; lists or 1-D arrays (broadcast against each
@@ -116,6 +117,13 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         Back-compute the chord from the thrust (Eq. (31)) or the torque balance.
     root_chord_correction : float, optional
         ``k`` of the root-chord correction, Eq. (32); None (default) for none.
+    section_point : {'reference', 'local'}
+        ``'reference'`` (default, the paper): every station at the maximum-L/D
+        point of the reference station's Reynolds number.  ``'local'``: each
+        station minimises its ``cd/cl`` at its fixed load, with the chord (and so
+        the Reynolds number) following from the load
+        (:mod:`bild_mdo.bild.local_section_point`; a polar that varies with the
+        Reynolds number only).
     on_infeasible : {'raise', 'skip'}
         What to do with designs whose ideal loading does not exist (the
         paper's Assumption 3 fails at a station, or a hover rotor cannot load
@@ -157,6 +165,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     validation.choice("loss_model", loss_model, LOSS_MODELS)
     validation.choice("chord_form", chord_form, CHORD_FORMS)
     validation.choice("on_infeasible", on_infeasible, ON_INFEASIBLE)
+    validation.choice("section_point", section_point, SECTION_POINTS)
     if root_chord_correction is not None:
         root_chord_correction = float(validation.positive("root_chord_correction", root_chord_correction,
                                                           hint="k of Eq. (32), or None", ndim=(0,)))
@@ -169,7 +178,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
 
     config = dict(num_nodes=nn, num_radial=num_radial, num_blades=num_blades, loss_model=loss_model,
                   chord_form=chord_form, root_chord_correction=root_chord_correction, input_mode=input_mode,
-                  on_infeasible="flag")
+                  on_infeasible="flag", section_point=section_point)
     # resolve_airfoil gives one polar object per airfoil text in a process, so bild_problem (keyed by the
     # polar) reuses the set-up problem on repeated calls.
     polar = resolve_airfoil(airfoil)

@@ -71,7 +71,8 @@ def false_position(lo, hi, f_lo, f_hi):
     return np.clip(x, np.minimum(lo, hi), np.maximum(lo, hi))
 
 
-def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100, x_scale=1e-3):
+def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100, x_scale=1e-3,
+                     quadratic_stop=False):
     """Solve ``f(x) = 0`` for every element, with ``x`` kept inside ``[lo, hi]``.
 
     Parameters
@@ -98,6 +99,12 @@ def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100,
         width of pi).
     x_scale : float
         Floor of ``|x|`` in the round-off tests, for roots at ``x = 0``.
+    quadratic_stop : bool
+        Also converged (saving the evaluation that would only confirm it) when
+        two Newton steps in a row show quadratic convergence that leaves the
+        applied correction's predicted error ``|step|**3 / |previous step|**2``
+        below ``eps |x| / 4`` (half an ulp); the correction is applied.
+        Default False (the behaviour of earlier releases, bit for bit).
 
     Returns
     -------
@@ -116,46 +123,72 @@ def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100,
     slope = np.full(n, np.nan)
     converged = np.zeros(n, dtype=bool)
     iterations = np.zeros(n, dtype=int)
-    f_prev = np.full(n, np.inf)
 
+    # Working arrays of the elements still iterating (compacted as they finish).  The loop body is
+    # written for small batches too (one design: tens of elements), where each NumPy call costs more
+    # than its arithmetic: method calls instead of module functions, no temporary beyond need.
     active = np.arange(n)
-    for _ in range(max_iter + 1):
-        if active.size == 0:
-            break
-        xa = x[active]
-        out = function(xa, active)
-        fa = np.asarray(out[0], dtype=float)
-        da = np.asarray(out[1], dtype=float)
-        f[active], slope[active] = fa, da
-        iterations[active] += 1
-        finite = np.isfinite(fa)
-        # Keep the bracket: replace the end point whose f has the sign of f(x).
-        same_lo = np.sign(fa) == sign_lo[active]
-        lo[active] = np.where(same_lo, xa, lo[active])
-        hi[active] = np.where(same_lo, hi[active], xa)
-        lo_a = np.minimum(lo[active], hi[active])
-        hi_a = np.maximum(lo[active], hi[active])
+    # Ordered brackets lo_w <= hi_w, with the sign of f at lo_w (the sign at the other end is opposite).
+    swap = lo > hi
+    lo_w, hi_w = np.where(swap, hi, lo), np.where(swap, lo, hi)
+    sign_w = np.where(swap, -sign_lo, sign_lo)
+    xa = x.copy()
+    f_prev = np.full(n, np.inf)
+    step_prev = np.zeros(n)  # |previous Newton step|; 0 after a bisection step or at the start
+    four_eps = 4.0 * _EPS
+    caller = np.geterr()  # the function runs under the caller's floating-point error handling
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for count in range(1, max_iter + 2):
+            with np.errstate(**caller):
+                out = function(xa, active)
+            fa = np.asarray(out[0], dtype=float)
+            da = np.asarray(out[1], dtype=float)
+            # Keep the bracket: replace the end point whose f has the sign of f(x).
+            same_lo = np.sign(fa) == sign_w
+            lo_w = np.where(same_lo, xa, lo_w)
+            hi_w = np.where(same_lo, hi_w, xa)
 
-        with np.errstate(invalid="ignore", divide="ignore"):
             step = fa / da
-        roundoff = 4.0 * _EPS * np.maximum(np.abs(xa), x_scale)
-        at_root = np.abs(fa) <= atol
-        if len(out) > 2:
-            at_root |= np.abs(fa) <= 4.0 * _EPS * np.asarray(out[2], dtype=float)
-        small_step = ~at_root & (np.abs(step) <= roundoff)
-        done = (at_root | small_step | (hi_a - lo_a <= roundoff)) & finite
-        converged[active[done]] = True
-        # A correction below round-off is still the better estimate: apply it (within the bracket).
-        last = done & small_step
-        x[active[last]] = np.clip(xa[last] - step[last], lo_a[last], hi_a[last])
-        keep = ~done & finite
-        active, xa, fa, step = active[keep], xa[keep], fa[keep], step[keep]
-        lo_a, hi_a = lo_a[keep], hi_a[keep]
-        newton = xa - step
-        bisect = (~np.isfinite(newton) | (newton <= lo_a) | (newton >= hi_a)
-                  | (np.abs(fa) > 0.5 * f_prev[active]))
-        f_prev[active] = np.abs(fa)
-        x[active] = np.where(bisect, 0.5 * (lo_a + hi_a), newton)
+            abs_step = np.abs(step)
+            roundoff = four_eps * np.maximum(np.abs(xa), x_scale)
+            abs_f = np.abs(fa)
+            if len(out) > 2:
+                at_root = abs_f <= four_eps * out[2]
+                if atol > 0.0:
+                    at_root |= abs_f <= atol
+            else:
+                at_root = abs_f <= atol
+            small = abs_step <= roundoff
+            if quadratic_stop:
+                small |= abs_step * abs_step * abs_step <= 0.0625 * roundoff * step_prev * step_prev
+            small_step = small & ~at_root
+            finite = np.isfinite(fa)
+            done = (at_root | small_step | (hi_w - lo_w <= roundoff)) & finite
+            keep = ~done & finite
+            if not keep.all():
+                # A correction below round-off is still the better estimate: apply it (within the bracket).
+                xa_out = np.where(done & small_step, np.minimum(np.maximum(xa - step, lo_w), hi_w), xa)
+                gone = ~keep
+                idx = active[gone]
+                x[idx] = xa_out[gone]
+                f[idx] = fa[gone]
+                slope[idx] = da[gone]
+                iterations[idx] = count
+                converged[idx] = done[gone]
+                if not keep.any():
+                    break
+                active, xa, fa, da, step, abs_f = active[keep], xa[keep], fa[keep], da[keep], step[keep], abs_f[keep]
+                lo_w, hi_w, sign_w = lo_w[keep], hi_w[keep], sign_w[keep]
+                f_prev = f_prev[keep]
+                abs_step = abs_step[keep]
+            newton = xa - step
+            bisect = ~((newton > lo_w) & (newton < hi_w)) | (abs_f > 0.5 * f_prev)
+            f_prev = abs_f
+            step_prev = np.where(bisect, 0.0, abs_step)
+            xa = np.where(bisect, 0.5 * (lo_w + hi_w), newton)
+        else:
+            # Out of iterations: the elements still active keep their next iterate (not converged).
+            x[active], f[active], slope[active], iterations[active] = xa, fa, da, max_iter + 1
     return NewtonResult(x, converged, f, slope, iterations)
 
 

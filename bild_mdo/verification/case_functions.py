@@ -8,7 +8,10 @@ Plug these into :func:`~bild_mdo.verification.runner.run_sweep`::
 run; :func:`optimize_case` solves the same energy-loss minimisation with the
 full BEM model and a gradient-based optimiser, warm-started from the BILD
 geometry, with BILD's thrust as the equality constraint (as in the paper).
-Both are module-level functions, so they pickle to worker processes.
+:func:`optimize_cases` optimises a chunk of cases in lockstep (one vectorised
+BEM model for all of them, :mod:`bild_mdo.optimization.lockstep`), each with
+the result :func:`optimize_case` gives it alone; ``bild-mdo verify`` uses it.
+All are module-level functions, so they pickle to worker processes.
 """
 from __future__ import annotations
 
@@ -21,7 +24,7 @@ from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.bem.metrics import VERIFIED_METRICS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.optimization.problem import DEFAULT_MAXITER, DEFAULT_TOL, build_optimization_problem, make_driver
-from bild_mdo.optimization.run import optimize_rotor
+from bild_mdo.optimization.run import optimize_rotor, optimize_rotors
 from bild_mdo.utils.batches import isolate_failures
 
 from .cases import CaseSetupError
@@ -227,7 +230,84 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
                             bild_result["thrust"], inputs["altitude"], problem=prob, restarts=restarts, initial=initial,
                             bild_chord=bild_result.get("chord"), bild_twist=bild_result.get("twist"),
                             reference_chord=inputs["reference_chord"])
+    return _row(result)
+
+
+def _row(result):
     row = {name: result.performance[name] for name in VERIFIED_METRICS}
     row.update(chord=result.chord, twist=result.twist, converged=result.converged, status=result.status,
                iterations=result.iterations)
     return row
+
+
+def optimize_cases(payloads, optimizer=None, initial="bild", parameterization="stations", tol=None, restarts=1):
+    """BEM optimisations of a chunk of sweep cases in lockstep: :func:`optimize_case` for many cases at once.
+
+    Cases of one configuration (optimiser, stations, blades, airfoil) share
+    one lockstep run (:func:`~bild_mdo.optimization.run.optimize_rotors`);
+    every case gets the result it gets alone.
+
+    Parameters
+    ----------
+    payloads : list of (Case, dict)
+        Each case with its entry of :func:`bild_batch`.
+    optimizer, initial, parameterization, tol, restarts
+        See :func:`optimize_case`.
+
+    Returns
+    -------
+    list of dict or Exception
+        Per case, in order: the row of :func:`optimize_case`, or the exception
+        that case raised (a :class:`CaseSetupError` when its problem cannot
+        be set up).  ``run_time`` is left to the caller.
+
+    Raises
+    ------
+    ImportError
+        If the optimiser's package is missing.
+    """
+    out = [None] * len(payloads)
+    groups = {}
+    for k, (case, _bild) in enumerate(payloads):
+        inputs = case.inputs
+        chosen = case.optimizer if optimizer is None else optimizer
+        key = (chosen, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
+        groups.setdefault(key, []).append(k)
+    for (chosen, *_), members in groups.items():
+        try:
+            prob = _cached_problem(payloads[members[0]][0].inputs, chosen, parameterization, tol)
+        except ImportError:
+            raise
+        except Exception as exc:  # any failure to build the model is a set-up error, not a result of the cases
+            error = CaseSetupError(f"the BEM optimisation problem cannot be set up: {type(exc).__name__}: {exc}")
+            for k in members:
+                out[k] = error
+            continue
+        _optimize_group(prob, [payloads[k] for k in members], members, out, initial, restarts)
+    return out
+
+
+def _optimize_group(prob, payloads, members, out, initial, restarts):
+    columns = {key: np.array([case.inputs[key] for case, _ in payloads], dtype=float)
+               for key in ("v_axial", "rpm", "radius", "hub_radius", "altitude", "reference_chord")}
+    thrust = np.array([bild["thrust"] for _, bild in payloads], dtype=float)
+    geometry = {}
+    if initial == "bild":
+        geometry = {key: np.array([bild[key] for _, bild in payloads], dtype=float) for key in ("chord", "twist")}
+    try:
+        results = optimize_rotors(columns["v_axial"], columns["rpm"], columns["radius"], columns["hub_radius"],
+                                  thrust, columns["altitude"], problem=prob, restarts=restarts, initial=initial,
+                                  bild_chord=geometry.get("chord"), bild_twist=geometry.get("twist"),
+                                  reference_chord=columns["reference_chord"])
+    except ValueError:
+        if len(payloads) == 1:
+            raise
+        # A case the optimisation rejects (inconsistent inputs): every case alone, so only that one fails.
+        for k, payload in zip(members, payloads):
+            try:
+                _optimize_group(prob, [payload], [k], out, initial, restarts)
+            except Exception as exc:  # the case's own error, reported in its row
+                out[k] = exc
+        return
+    for k, result in zip(members, results):
+        out[k] = _row(result)

@@ -247,7 +247,8 @@ def _dask_results(client, own_client, fn, tasks, as_completed):
     token = uuid.uuid4().hex[:8]
     try:
         if tasks:
-            keys = [f"bild-verify-{token}-{key}" for key, _ in tasks]
+            # Short task names: a chunk's key is the tuple of its case ids.
+            keys = [f"bild-verify-{token}-{_key_text(key)}" for key, _ in tasks]
             submitted = client.map(fn, [arg for _, arg in tasks], key=keys, pure=False)
             futures = dict(zip(submitted, tasks))
         for future in as_completed(list(futures)):
@@ -263,7 +264,7 @@ def _dask_results(client, own_client, fn, tasks, as_completed):
                 yield key, value, None
             future.release()
         for key, arg in suspects:
-            future = client.submit(fn, arg, key=f"bild-verify-{token}-{key}-alone", pure=False)
+            future = client.submit(fn, arg, key=f"bild-verify-{token}-{_key_text(key)}-alone", pure=False)
             futures = {future: (key, arg)}
             try:
                 value = future.result()
@@ -278,3 +279,10 @@ def _dask_results(client, own_client, fn, tasks, as_completed):
             client.cancel(list(futures))
         if own_client:
             client.close()
+
+
+def _key_text(key):
+    """A task key as a short name: ``'17'`` for a case, ``'17+63'`` for a chunk of 64 cases from case 17."""
+    if isinstance(key, tuple):
+        return f"{key[0]}+{len(key) - 1}" if key else "empty"
+    return str(key)

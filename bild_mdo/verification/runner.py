@@ -30,7 +30,6 @@ collected and shown once per sweep (:mod:`~bild_mdo.verification.warning_relay`)
 """
 import functools
 import os
-import re
 import sys
 import time
 import traceback
@@ -38,17 +37,19 @@ import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-import openmdao.api as om
 
-from bild_mdo.airfoil.text import DEFAULT_AIRFOIL
 from .cases import CaseSetupError, check_workers
 from .executors import check_picklable, connect_dask, run_tasks
-from .optimality import optimality_check
-from .statistics import table3
+from .report import progress_bar, default_db_path, format_duration, sweep_summary, verification_table  # noqa: F401
 from .store import INPUT_COLUMNS, RESULT_ARRAYS, RESULT_KEYS, ResultsStore
 from .warning_relay import WarningRelay, recorded_warnings
 
 ERROR_TEXT_LIMIT = 4000
+
+#: Cases per task of a chunked optimisation (run_sweep's optimize_chunk_fn).  Several lockstep batches
+#: (64 cases) per chunk: the cases that need many iterations then run beside new cases instead of in a
+#: batch of their own at the end of every chunk; a chunk is still only 10-20 s of work to lose to an interrupt.
+DEFAULT_CHUNK_SIZE = 256
 
 
 @dataclass
@@ -138,17 +139,55 @@ def optimize_task(optimize_fn, payload):
     return outcome
 
 
+def optimize_chunk_task(optimize_chunk_fn, payloads):
+    """Run a chunk of optimisations in a worker: :func:`optimize_task` for many cases in one call.
+
+    Parameters
+    ----------
+    optimize_chunk_fn : callable
+        ``optimize_chunk_fn(list of (case, bild_result)) -> list`` with, per
+        case, a result dict or the exception of that case.
+    payloads : list of tuple
+        ``(case, bild_result)`` per case.
+
+    Returns
+    -------
+    list of dict
+        Per case, what :func:`optimize_task` returns; ``run_time`` is the
+        chunk's wall time divided by its cases, and the chunk's warnings come
+        with the first case.
+    """
+    with recorded_warnings() as caught:
+        start = time.perf_counter()
+        try:
+            results = list(optimize_chunk_fn(payloads))
+            if len(results) != len(payloads):
+                raise ValueError(f"optimize_chunk_fn returned {len(results)} results for {len(payloads)} cases")
+        except Exception as exc:  # the chunk's error is every case's error
+            results = [exc] * len(payloads)
+        share = (time.perf_counter() - start) / max(1, len(payloads))
+        outcomes = [_outcome(result, share) for result in results]
+    for k, outcome in enumerate(outcomes):
+        outcome["warnings"] = caught if k == 0 else []
+    return outcomes
+
+
 def _optimize_outcome(optimize_fn, payload):
     case, bild_result = payload
     start = time.perf_counter()
     try:
         result = optimize_fn(case, bild_result)
-    except (CaseSetupError, ImportError) as exc:
-        return {"result": None, "error": f"{type(exc).__name__}: {exc}", "run_time": time.perf_counter() - start,
-                "setup_error": True}
     except Exception as exc:
-        return {"result": None, "error": _error_text(exc), "run_time": time.perf_counter() - start}
-    run_time = time.perf_counter() - start
+        result = exc
+    return _outcome(result, time.perf_counter() - start)
+
+
+def _outcome(result, run_time):
+    if isinstance(result, (CaseSetupError, ImportError)):
+        return {"result": None, "error": f"{type(result).__name__}: {result}", "run_time": run_time,
+                "setup_error": True}
+    if isinstance(result, Exception):
+        return {"result": None, "error": _error_text(result), "run_time": run_time}
     converged = isinstance(result, dict) and bool(result.get("converged", False))
     if isinstance(result, dict) and "converged" not in result:
         return {"result": None, "error": "optimize_fn result lacks the 'converged' flag", "run_time": run_time}
@@ -208,7 +247,8 @@ def _bild_results(bild_batch_fn, cases):
     return cleaned, elapsed
 
 
-def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=None, progress=True, case_ids=None):
+def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=None, progress=True, case_ids=None,
+              optimize_chunk_fn=None, chunk_size=DEFAULT_CHUNK_SIZE):
     """Run (or resume) a verification sweep into an SQLite results store.
 
     Cases already in the store are skipped; stored rows that fail their
@@ -239,6 +279,14 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
         Progress report to stderr (True), to the given stream, or none (False).
     case_ids : iterable of int, optional
         Only these cases (default: the whole sweep).
+    optimize_chunk_fn : callable, optional
+        ``optimize_chunk_fn(list of (case, bild_result)) -> list`` (a result
+        dict or an exception per case): optimises chunks of up to
+        ``chunk_size`` cases per task instead of ``optimize_fn`` per case
+        (fewer for local workers when the cases would not fill them all;
+        every n-th case per chunk); the rows of a chunk are stored when it returns.
+    chunk_size : int
+        Cases per task of ``optimize_chunk_fn``.
 
     Returns
     -------
@@ -261,6 +309,8 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
     cases = spec.cases(case_ids)
     stream = None if progress is True else progress
     task_fn = functools.partial(optimize_task, optimize_fn)
+    if optimize_chunk_fn is not None:
+        task_fn = functools.partial(optimize_chunk_task, optimize_chunk_fn)
     relay = WarningRelay()
     with ResultsStore(db_path, spec) as store:
         damaged = store.damaged_ids()
@@ -282,7 +332,12 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
             elif workers != 1:
                 check_picklable(task_fn, "worker processes")
             try:
-                _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay)
+                chunk = None
+                if optimize_chunk_fn is not None:
+                    share = -(-len(remaining) // workers) if client is None else len(remaining)
+                    chunk = max(1, min(int(chunk_size), share))
+                _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay,
+                         chunk)
             finally:
                 if owned:
                     client.close()
@@ -297,14 +352,14 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
     return result
 
 
-def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay):
+def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay, chunk):
     with recorded_warnings() as caught:
         bild, result.bild_batch_time = _bild_results(bild_batch_fn, remaining)
     relay.show(caught)
     if progress:
         print(f"BILD: {len(remaining)} cases in {result.bild_batch_time:.2f} s; {result.num_skipped} already stored",
               file=stream or sys.stderr)
-    bar = _progress_bar(len(remaining), stream) if progress else None
+    bar = progress_bar(len(remaining), stream) if progress else None
     try:
         with relay.above(bar):
             tasks, pending_rows = [], {}
@@ -318,31 +373,31 @@ def _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress
                     row.update(converged=False, status="BILD failed",
                                error=str(bild_result.get("error") or "BILD did not converge"))
                     _store(store, row, result, bar)
-            for case_id, outcome, error in run_tasks(task_fn, tasks, workers=workers, scheduler=client):
-                row = pending_rows.pop(case_id)
-                if outcome is not None:
-                    relay.show(outcome.get("warnings", ()))
-                    if outcome.get("setup_error"):
-                        result.setup_errors[case_id] = outcome["error"]
-                        if bar is not None:
-                            bar.update()
-                        continue
-                _store(store, _finish_row(row, outcome, error), result, bar)
+            if chunk is not None:
+                # Every count-th case per chunk: neighbouring cases of a sweep are alike (the same rotor size,
+                # the same advance ratio), so striding spreads the hard ones over the chunks.
+                count = -(-len(tasks) // chunk)
+                tasks = [(tuple(key for key, _ in tasks[k::count]), [arg for _, arg in tasks[k::count]])
+                         for k in range(count)]
+            for key, outcome, error in run_tasks(task_fn, tasks, workers=workers, scheduler=client):
+                if chunk is None:
+                    key, outcome = (key,), [outcome]
+                for case_id, case_outcome in zip(key, outcome if outcome is not None else [None] * len(key)):
+                    _finish(store, pending_rows.pop(case_id), case_outcome, error, result, bar, relay)
     finally:
         if bar is not None:
             bar.close()
 
 
-def _progress_bar(total, stream):
-    """A tqdm bar of the optimisations: redrawn on a terminal, a plain line every 30 s in a log."""
-    # Imported here: the command line imports this module for every subcommand, and only a sweep draws a bar.
-    from tqdm import tqdm
-
-    stream = sys.stderr if stream is None else stream
-    isatty = getattr(stream, "isatty", None)
-    tty = bool(isatty and isatty())
-    return tqdm(total=total, desc="optimise", unit="case", file=stream, mininterval=0.1 if tty else 30.0,
-                ascii=not tty, dynamic_ncols=tty)
+def _finish(store, row, outcome, error, result, bar, relay):
+    if outcome is not None:
+        relay.show(outcome.get("warnings", ()))
+        if outcome.get("setup_error"):
+            result.setup_errors[row["case_id"]] = outcome["error"]
+            if bar is not None:
+                bar.update()
+            return
+    _store(store, _finish_row(row, outcome, error), result, bar)
 
 
 def _store(store, row, result, bar):
@@ -352,75 +407,3 @@ def _store(store, row, result, bar):
         result.num_failed += 1
     if bar is not None:
         bar.update()
-
-
-def default_db_path(spec):
-    """Default results file name of a sweep, in the working directory.
-
-    ``bild-verify-L{levels}-{optimizer}.sqlite`` for the default airfoil,
-    ``bild-verify-L{levels}-{optimizer}-{airfoil}.sqlite`` for another one
-    (the airfoil text with every run of other characters than letters,
-    digits, ``.`` and ``=`` replaced by ``-``, at most 40 characters), so
-    that sweeps of different airfoils do not meet in one file.
-    """
-    name = f"bild-verify-L{spec.levels}-{spec.optimizer}"
-    if spec.airfoil.strip().lower() != DEFAULT_AIRFOIL:
-        slug = re.sub(r"[^a-z0-9.=]+", "-", spec.airfoil.strip().lower()).strip("-.")[:40].strip("-.")
-        name += f"-{slug or 'airfoil'}"
-    return f"{name}.sqlite"
-
-
-def format_duration(seconds):
-    """Format seconds as ``'42s'``, ``'3m05s'`` or ``'2h07m'``; ``'?'`` when unknown."""
-    if seconds is None or seconds != seconds or seconds == float("inf"):
-        return "?"
-    seconds = int(round(seconds))
-    if seconds < 60:
-        return f"{seconds}s"
-    if seconds < 3600:
-        return f"{seconds // 60}m{seconds % 60:02d}s"
-    return f"{seconds // 3600}h{(seconds % 3600) // 60:02d}m"
-
-
-def sweep_summary(spec, db_path, run):
-    """One line on what :func:`run_sweep` did: cases resumed, computed, their wall time and failures.
-
-    Parameters
-    ----------
-    spec : SweepSpec
-    db_path : str or os.PathLike
-    run : SweepResult
-
-    Returns
-    -------
-    str
-    """
-    return (f"Sweep of {spec.num_cases} cases in {os.fspath(db_path)}: {run.num_skipped} resumed, "
-            f"{len(run.computed_ids)} computed in {format_duration(run.wall_time)} ({run.num_failed} not converged).")
-
-
-def verification_table(rows):
-    """Table 3 of a results store, with the check that every optimum is an optimum.
-
-    A failed optimality check must not cost the figures of a finished sweep,
-    so analysis errors are returned instead of raised.
-
-    Parameters
-    ----------
-    rows : list of dict
-        :meth:`ResultsStore.rows`.
-
-    Returns
-    -------
-    table : Table3
-        With ``table.optimality`` set when the check ran
-        (:func:`~bild_mdo.verification.optimality.optimality_check`).
-    error : str or None
-        Why the check failed, if it did.
-    """
-    table = table3(rows)
-    try:
-        table.optimality = optimality_check(rows)
-    except (om.AnalysisError, ValueError, ArithmeticError) as exc:
-        return table, str(exc)
-    return table, None

@@ -1,4 +1,6 @@
 """Surrogate of tables at several Mach numbers: cardinal-spline weights in M, exact Mach derivatives."""
+import warnings
+
 import numpy as np
 import pytest
 
@@ -117,6 +119,26 @@ def test_mach_outside_the_tables_is_clamped_with_a_warning():
         v = polar.evaluate(0.05, 5e5, mach=0.8)
     assert v.dcl_dmach == 0.0
     assert v.cl == pytest.approx(polar.evaluate(0.05, 5e5, mach=0.7).cl, rel=1e-14)
+
+
+def test_reynolds_outside_the_tables_is_extrapolated_in_every_member(polar):
+    # The tables' drag falls as Re^-0.2 (_tables): past Re = 1e6 each member continues it as a
+    # power law from the edge (TabulatedPolar), so the blend keeps falling, continuously, with
+    # Re derivatives and Mach derivatives that are the members' blended (complex step in M).
+    alpha = np.radians([1.0, 4.0])
+    mach = np.array([0.3, 0.6])
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*outside the tabulated range", category=UserWarning)
+        edge = polar.evaluate(alpha, 1e6, mach=mach)
+        past = polar.evaluate(alpha, 1e6 * (1.0 + 1e-9), mach=mach)
+        far = polar.evaluate(alpha, 4e6, mach=mach)
+        members = [m.evaluate(alpha, 4e6) for m in polar.members]
+    np.testing.assert_allclose(past.cd, edge.cd, rtol=1e-8)
+    np.testing.assert_allclose(past.dcd_dre * 1e6, edge.dcd_dre * 1e6, rtol=1e-6)
+    assert np.all(far.cd < edge.cd) and np.all(far.dcd_dre < 0.0)
+    w_c, _ = polar.mach_weights(mach + 1j * H)
+    np.testing.assert_allclose(np.imag(sum(w * m.cd for w, m in zip(w_c, members))) / H, far.dcd_dmach, rtol=1e-12)
+    np.testing.assert_allclose(sum(w.real * m.dcd_dre for w, m in zip(w_c, members)), far.dcd_dre, rtol=1e-12)
 
 
 def test_a_folder_of_tables_at_several_mach_numbers_resolves_to_a_mach_polar(tmp_path):

@@ -46,3 +46,12 @@ def test_thrust_target_problem_is_its_own_configuration():
     solved.set_val("thrust_target", direct.get_val("thrust"))
     solved.run_model()
     np.testing.assert_allclose(solved.get_val("ref_chord"), 0.12, rtol=1e-10)
+
+
+def test_section_point_is_its_own_configuration():
+    clear_model_cache()
+    reference = bild_problem(num_nodes=1, num_radial=6)
+    local = bild_problem(num_nodes=1, num_radial=6, section_point="local")
+    assert local is not reference
+    assert local.model.options["section_point"] == "local"
+    assert bild_problem(num_nodes=1, num_radial=6, section_point="local") is local

@@ -88,3 +88,14 @@ def test_infeasible_batch_is_one_line(capsys):
     assert code == 2 and out == ""
     assert len(err.strip().splitlines()) == 1
     assert "1 of 2 design(s) infeasible" in err and "on_infeasible='skip'" in err
+
+
+def test_design_section_point_local(capsys):
+    code, out, err = run(capsys, "design", "--section-point", "local", "--num-radial", "12", "--v-axial", "10")
+    assert code == 0, err
+    local = design_rotor(v_axial=10.0, num_radial=12, section_point="local")
+    thrust_line = next(line for line in out.splitlines() if line.strip().startswith("thrust T"))
+    assert float(thrust_line.split()[-2]) == pytest.approx(local.thrust, rel=1e-5)
+    code, _, err = run(capsys, "design", "--section-point", "best")
+    assert code == 2
+    assert "--section-point" in err

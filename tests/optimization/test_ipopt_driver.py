@@ -7,7 +7,7 @@ import openmdao.api as om
 import pytest
 from numpy.testing import assert_allclose
 
-from bild_mdo.optimization.ipopt_driver import IpoptDriver
+from bild_mdo.optimization.ipopt_driver import MAX_QUASI_NEWTON_HISTORY, IpoptDriver
 
 try:
     import cyipopt  # noqa: F401
@@ -409,6 +409,18 @@ def test_iteration_limit_from_options_and_opt_settings():
     prob.run_driver()
     assert prob.driver.ipopt_status == -1
     assert prob.driver.ipopt_iterations == 5
+
+
+@needs_cyipopt
+def test_quasi_newton_history_defaults_to_the_number_of_design_values():
+    # Full-memory BFGS for small problems: as many past steps as design values (the rotor's 60),
+    # never fewer than Ipopt's own default of 6, at most MAX_QUASI_NEWTON_HISTORY; opt_settings win.
+    driver = IpoptDriver(disp=False)
+    assert driver._ipopt_settings(60)["limited_memory_max_history"] == 60
+    assert driver._ipopt_settings(2)["limited_memory_max_history"] == 6
+    assert driver._ipopt_settings(10_000)["limited_memory_max_history"] == MAX_QUASI_NEWTON_HISTORY
+    driver.opt_settings["limited_memory_max_history"] = 12
+    assert driver._ipopt_settings(60)["limited_memory_max_history"] == 12
 
 
 @needs_cyipopt

@@ -1,7 +1,7 @@
-"""NormalizedResponsesComp: partials against complex step and the defining formulas (paper Eq. 10)."""
+"""NormalizedResponsesComp and ResponseSumsComp: partials against complex step and the defining formulas (paper Eq. 10)."""
 import numpy as np
 
-from bild_mdo.optimization.responses import NormalizedResponsesComp
+from bild_mdo.optimization.responses import NormalizedResponsesComp, ResponseSumsComp
 from bild_mdo.utils.testing import check_component_partials
 
 
@@ -18,3 +18,11 @@ def test_declares_no_radial_size():
     # A per-design component: only num_nodes, no num_radial.
     comp = NormalizedResponsesComp()
     assert "num_nodes" in comp.options and "num_radial" not in comp.options
+
+
+def test_sums_partials_and_values():
+    values = dict(energy_loss_ratio=[1.2, 1.05, 1.4, 1.1], thrust_residual=[1e-3, -2e-3, 0.0, 5e-4])
+    prob = check_component_partials(ResponseSumsComp(num_nodes=4), values, atol=1e-12, rtol=1e-12)
+    # Definition: plain sums over the designs (the cases of a lockstep batch do not interact).
+    assert prob.get_val("energy_loss_ratio_sum")[0] == np.sum(values["energy_loss_ratio"])
+    assert prob.get_val("thrust_residual_sum")[0] == np.sum(values["thrust_residual"])

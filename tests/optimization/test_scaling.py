@@ -34,8 +34,11 @@ def test_references_are_inverse_square_roots_of_the_curvature(designs):
     ref_chord, ref_twist = hessian_scaling(prob, floor=0.0)
     diag, _ = lagrangian_hessian_diagonal(prob)
     n = x_c.size
-    # ref_i = 1 / sqrt(|H_ii|): the scaled Hessian has a unit diagonal.
-    np.testing.assert_allclose(ref_chord, 1.0 / np.sqrt(np.abs(diag[:n])), rtol=1e-12)
-    np.testing.assert_allclose(ref_twist, 1.0 / np.sqrt(np.abs(diag[n:])), rtol=1e-12)
+    # ref_i = 1 / sqrt(|H_ii|): the scaled Hessian has a unit diagonal.  The two diagonals come from two
+    # sets of model runs; the inflow solve is warm-started from the previous run (BEMOptimizationGroup's
+    # warm_start), which reproduces phi to its tolerance |R| <= 1e-13, amplified by the 1e-6
+    # finite-difference step of the diagonal to ~1e-7 relative (1e-12 with cold solves).
+    np.testing.assert_allclose(ref_chord, 1.0 / np.sqrt(np.abs(diag[:n])), rtol=1e-6)
+    np.testing.assert_allclose(ref_twist, 1.0 / np.sqrt(np.abs(diag[n:])), rtol=1e-6)
     # The design is left where it was.
     np.testing.assert_array_equal(prob.get_val("chord_ratio_cp"), x_c)

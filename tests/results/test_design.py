@@ -259,3 +259,15 @@ def test_tip_mach_number():
                                rtol=1e-5)
     assert rotor.mach.shape == (2, 12) and np.all(rotor.mach < rotor.tip_mach[:, None])
     assert "tip Mach number" in rotor[0].summary()
+
+
+def test_local_section_point_design_keeps_the_reference_chord():
+    # Invariant (issue 12): chord(r_ref) = c_ref with the local section point too; r/R = 0.5 is station 4 of
+    # 12 equal annuli from 0.2 (0.2 + 4.5 * 0.8 / 12).
+    result = design_rotor(v_axial=[0.0, 20.0], ref_chord=[0.12, 0.18], num_radial=12, section_point="local")
+    np.testing.assert_allclose(result.chord[:, 4], [0.12, 0.18], rtol=1e-9)
+
+
+def test_section_point_is_validated():
+    with pytest.raises(ValueError, match="section_point must be one of reference, local"):
+        design_rotor(section_point="global")

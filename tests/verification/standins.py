@@ -108,3 +108,14 @@ def optimize_setup_error(case, bild_result, missing_ids=()):
     if case.case_id in missing_ids:
         raise ImportError("stand-in optimiser package is not installed")
     return optimize(case, bild_result)
+
+
+def optimize_chunk(payloads, missing_ids=()):
+    """Chunk stand-in: ``optimize`` per case, its exception (or ImportError for ``missing_ids``) in its place."""
+    out = []
+    for case, bild_result in payloads:
+        try:
+            out.append(optimize_setup_error(case, bild_result, missing_ids))
+        except Exception as exc:
+            out.append(exc)
+    return out

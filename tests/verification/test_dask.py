@@ -43,6 +43,21 @@ def test_sweep_through_scheduler_address(tmp_path, cluster_address):
             assert row["opt_time"] >= 0.02  # the sleep ran on a worker and was timed there
 
 
+def test_chunked_sweep_through_scheduler_address(tmp_path, cluster_address):
+    # Source: the same sweep run in this process, one case per task (chunking never changes a stored row).
+    from tests.verification.test_runner import _comparable
+
+    reference = run_sweep(SPEC, tmp_path / "a.sqlite", standins.bild_batch, standins.optimize, progress=False)
+    result = run_sweep(SPEC, tmp_path / "b.sqlite", standins.bild_batch, standins.optimize, scheduler=cluster_address,
+                       progress=False, optimize_chunk_fn=standins.optimize_chunk, chunk_size=5)
+    assert sorted(result.computed_ids) == sorted(reference.computed_ids) == list(range(16))
+    rows = []
+    for db in ("a.sqlite", "b.sqlite"):
+        with ResultsStore(tmp_path / db, SPEC) as store:
+            rows.append([_comparable(r) for r in store.rows()])
+    assert rows[0] == rows[1]
+
+
 class KilledWorker(Exception):
     """Stands for distributed.KilledWorker (matched by name, as the executor does)."""
 

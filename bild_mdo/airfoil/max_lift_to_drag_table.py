@@ -1,0 +1,239 @@
+"""The maximum-L/D point of a polar at many Reynolds numbers, warm-started from a per-polar table.
+
+:func:`~bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag` brackets the
+maximum by a scan of ~140 angles per Reynolds number before its Newton solve:
+most of the cost of BILD's reference airfoil when it runs once per design.
+The maximum moves smoothly with ``Re``, so this module solves it once per
+polar on a grid of ``ln Re`` (spacing :data:`LOG_RE_STEP`, nodes computed when
+a query first needs them, by that exact solver) and starts the same exact
+Newton iteration on ``g = cl_alpha cd - cl cd_alpha = 0`` from the cubic
+Hermite interpolant of the nodes (values and exact slopes ``dalpha*/dln Re``).
+The interpolant is within 1e-6 rad of the root (typically 1e-11 rad), so one
+or two Newton passes converge; the point returned is the exact root of the
+polar to round-off, with the same implicit-function derivatives
+(:func:`~bild_mdo.airfoil.max_lift_to_drag.point_from_polar_values`), not an
+interpolated value.
+
+Safeguards: a query falls back to the scan of the exact solver when its grid
+interval is not smooth (a jump of the node values away from their slopes: the
+largest-L/D maximum switches between two local maxima there), when a node
+could not be solved, or when the warm-started iteration does not converge in
+:data:`MAX_PASSES` passes to a maximum of ``cl/cd`` with ``cl > 0`` near the
+interpolated angle.  Polars that vary with Mach number or along the span use
+the exact solver directly.
+
+The table is built from the polar's own ``evaluate``/``second_derivatives``
+(through the exact solver) and kept per polar object in a module-level cache
+that forgets a polar when it is garbage-collected.  The node solves run with
+the polar's warnings silenced (a node just outside a polar's Reynolds range
+must not warn about Reynolds numbers nobody asked for); each query evaluates
+the polar at its own Reynolds numbers first, so those warnings are the same
+as without the table.
+"""
+from __future__ import annotations
+
+import warnings
+import weakref
+
+import numpy as np
+
+from bild_mdo.airfoil.max_lift_to_drag import max_lift_to_drag, point_from_polar_values
+
+#: Spacing of the table nodes in ``ln Re`` (1 %): the Hermite interpolant is then within ~1e-11 rad of the
+#: root for most Reynolds numbers of the built-in polars (1e-6 rad next to their spline knots).
+LOG_RE_STEP = 0.01
+#: Nodes solved together when a query needs one of them (a factor of 1.9 in Re).
+BLOCK = 64
+#: Newton passes from the interpolated angle before a query falls back to the exact solver's scan.
+MAX_PASSES = 4
+#: A Newton correction below this (rad) ends the iteration; it is applied (error O(step**2)).
+STEP_TOL = 1e-10
+#: Largest distance (rad) of the root from the interpolated angle, and largest mismatch of a node with its
+#: neighbour's slope (one local maximum throughout the interval, not a switch between two).
+TRUST = 1e-3
+
+_TABLES = {}
+
+
+class _Table:
+    """Nodes ``k`` (``ln Re = k LOG_RE_STEP``) from ``first``: angle, slope ``dalpha*/dln Re``, known, smooth."""
+
+    def __init__(self):
+        self.first = 0
+        self.alpha = np.zeros(0)
+        self.slope = np.zeros(0)
+        self.known = np.zeros(0, dtype=bool)
+        self.failed = np.zeros(0, dtype=bool)
+
+    def cover(self, k_lo, k_hi):
+        """Grow the arrays to hold nodes ``k_lo ... k_hi``."""
+        if self.alpha.size and self.first <= k_lo and k_hi < self.first + self.alpha.size:
+            return
+        first = min(k_lo, self.first) if self.alpha.size else k_lo
+        last = max(k_hi, self.first + self.alpha.size - 1) if self.alpha.size else k_hi
+        size = last - first + 1
+        offset = self.first - first
+        for name, dtype in (("alpha", float), ("slope", float), ("known", bool), ("failed", bool)):
+            grown = np.zeros(size, dtype=dtype)
+            old = getattr(self, name)
+            grown[offset:offset + old.size] = old
+            setattr(self, name, grown)
+        self.first = first
+
+
+def _table_of(polar):
+    """The table of ``polar`` (created empty at first use), or None if the polar cannot be weakly referenced."""
+    key = id(polar)
+    entry = _TABLES.get(key)
+    if entry is not None and entry[0]() is polar:
+        return entry[1]
+    try:
+        ref = weakref.ref(polar, lambda _, key=key: _TABLES.pop(key, None))
+    except TypeError:
+        return None
+    table = _Table()
+    _TABLES[key] = (ref, table)
+    return table
+
+
+def _fill(polar, table, nodes):
+    """Solve the missing nodes of every block of :data:`BLOCK` nodes that holds one of ``nodes``, exactly.
+
+    Whole blocks: one vectorised solve costs about the same for one node as for a block, and the
+    next designs nearby need no solve.  Nodes whose solve fails are marked failed.
+    """
+    blocks = np.unique(nodes // BLOCK)
+    nodes = (blocks[:, None] * BLOCK + np.arange(BLOCK)).ravel()
+    table.cover(int(nodes.min()), int(nodes.max()))
+    index = nodes - table.first
+    missing = np.unique(index[~table.known[index]])
+    if missing.size == 0:
+        return
+    reynolds = np.exp((missing + table.first) * LOG_RE_STEP)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            point = max_lift_to_drag(polar, reynolds)
+        except ValueError:
+            table.known[missing] = True
+            table.failed[missing] = True
+            return
+    table.alpha[missing] = point.alpha
+    table.slope[missing] = point.dalpha_dre * reynolds
+    table.known[missing] = True
+
+
+def _interpolate(table, log_re):
+    """Hermite interpolant of the table at ``ln Re``, and whether the interval may be used."""
+    t = log_re / LOG_RE_STEP
+    k = np.floor(t)
+    u = t - k
+    i = k.astype(np.intp) - table.first
+    a0, a1 = table.alpha[i], table.alpha[i + 1]
+    m0, m1 = table.slope[i] * LOG_RE_STEP, table.slope[i + 1] * LOG_RE_STEP
+    v = 1.0 - u
+    alpha = (1.0 + 2.0 * u) * v * v * a0 + u * v * v * m0 + u * u * (3.0 - 2.0 * u) * a1 - u * u * v * m1
+    smooth = ~(table.failed[i] | table.failed[i + 1])
+    smooth &= (np.abs(a1 - a0 - m0) <= TRUST) & (np.abs(a1 - a0 - m1) <= TRUST)
+    return alpha, smooth
+
+
+def _newton_pass(polar, alpha, reynolds):
+    """Polar values at ``alpha``, the Newton correction of ``g = 0`` and whether it is a maximum with lift."""
+    v = polar.evaluate(alpha, reynolds)
+    s = polar.second_derivatives(alpha, reynolds)
+    g = v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha
+    dg = s.d2cl_dalpha2 * v.cd - v.cl * s.d2cd_dalpha2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        step = -g / dg
+    good = np.isfinite(step) & (dg < 0.0) & (v.cl > 0.0) & (v.cd > 0.0)
+    return v, s, step, good
+
+
+def _take(values, index):
+    return type(values)(*(x[index] for x in values))
+
+
+def _put(target, index, values):
+    for field, x in zip(target, values):
+        field[index] = x
+
+
+def max_lift_to_drag_tabulated(polar, reynolds):
+    """:func:`~bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag` (Reynolds number only), warm-started.
+
+    Parameters
+    ----------
+    polar : Polar
+        Any polar with first and second derivatives; polars that vary with
+        Mach number or along the span are solved by the exact solver directly.
+    reynolds : array_like
+        Chord Reynolds numbers, any shape; complex values (complex step) are
+        carried to first order with the exact derivatives.
+
+    Returns
+    -------
+    MaxLiftToDrag
+        As :func:`~bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag`: the
+        same root of the polar (to round-off) and the same derivatives.
+
+    Raises
+    ------
+    ValueError
+        As :func:`~bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag`.
+    """
+    reynolds = np.asarray(reynolds)
+    table = None
+    if not (polar.varies_with_mach or polar.varies_along_span):
+        table = _table_of(polar)
+    re_flat = np.asarray(np.real(reynolds), dtype=float).ravel()
+    if table is None or not (np.all(np.isfinite(re_flat)) and np.all(re_flat > 0.0)):
+        return max_lift_to_drag(polar, reynolds)
+    log_re = np.log(re_flat)
+    k = np.floor(log_re / LOG_RE_STEP).astype(np.intp)
+    nodes = np.concatenate([k, k + 1])
+    lo, hi = nodes.min() - table.first, nodes.max() - table.first
+    if lo < 0 or hi >= table.alpha.size or not np.all(table.known[nodes - table.first]):
+        # The polar's own warnings (a Reynolds number outside its data) come from the queried values.
+        polar.evaluate(np.zeros_like(re_flat), re_flat)
+        _fill(polar, table, nodes)
+    guess, smooth = _interpolate(table, log_re)
+
+    n = re_flat.size
+    alpha = guess.copy()
+    correction = np.zeros(n)
+    v = s = None
+    ok = np.zeros(n, dtype=bool)
+    active = np.flatnonzero(smooth)
+    for _ in range(MAX_PASSES):
+        if active.size == 0:
+            break
+        va, sa, step, good = _newton_pass(polar, alpha[active], re_flat[active])
+        if v is None:
+            if active.size == n:
+                v, s = va, sa
+            else:
+                v = type(va)(*(np.zeros(n) for _ in va))
+                s = type(sa)(*(np.zeros(n) for _ in sa))
+        if v is not va:
+            _put(v, active, va)
+            _put(s, active, sa)
+        good &= np.abs(alpha[active] + step - guess[active]) <= TRUST
+        last = good & (np.abs(step) <= STEP_TOL)
+        correction[active[last]] = step[last]
+        ok[active[last]] = True
+        keep = good & ~last
+        alpha[active[keep]] += step[keep]
+        active = active[keep]
+    fallback = np.flatnonzero(~ok)
+    if fallback.size == n:
+        return max_lift_to_drag(polar, reynolds)
+    if fallback.size:
+        exact = max_lift_to_drag(polar, re_flat[fallback])
+        alpha[fallback] = exact.alpha
+        correction[fallback] = 0.0
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _put(v, fallback, polar.evaluate(exact.alpha, re_flat[fallback]))
+            _put(s, fallback, polar.second_derivatives(exact.alpha, re_flat[fallback]))
+    return point_from_polar_values(alpha, v, s, [reynolds], [], reynolds.shape, correction)

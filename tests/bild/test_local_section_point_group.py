@@ -1,0 +1,113 @@
+"""BILDGroup(section_point='local'): the invariants of the method, exact totals, and the reference point's limit."""
+import warnings
+
+import numpy as np
+import openmdao.api as om
+import pytest
+from openmdao.utils.assert_utils import assert_no_approx_partials
+
+from bild_mdo.airfoil.text import sweep_polar
+from bild_mdo.bem.analyze import analyze_rotor
+from bild_mdo.bild import BILDGroup
+from bild_mdo.bild.reference_airfoil import default_polar
+from bild_mdo.utils.testing import assert_totals_match
+
+# Midpoints of 12 equal annuli from r/R = 0.2 put station 4 at r/R = 0.2 + 4.5 * 0.8/12 = 0.5 (hand derivation).
+NR_REF = 12
+REF_STATION = 4
+OPERATING = {"hover": [0.0, 0.0, 0.0], "cruise": [10.0, 25.0, 40.0]}
+
+
+@pytest.fixture(autouse=True)
+def _quiet():
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*Reynolds numbers outside the tabulated range")
+        yield
+
+
+def _problem(kind, section_point="local", complex_step=False, mode="auto", num_radial=NR_REF, **options):
+    prob = om.Problem(BILDGroup(num_nodes=3, num_radial=num_radial, section_point=section_point, **options),
+                      reports=False)
+    prob.setup(mode=mode, force_alloc_complex=complex_step)
+    for name, value in dict(v_axial=OPERATING[kind], ref_chord=[0.1, 0.2, 0.3], rpm=[800.0, 900.0, 1000.0],
+                            altitude=[0.0, 1000.0, 2500.0]).items():
+        prob.set_val(name, value)
+    prob.run_model()
+    return prob
+
+
+@pytest.mark.parametrize("chord_form", ["thrust", "torque"])
+def test_chord_at_reference_radius_is_reference_chord(kind, chord_form):
+    # Invariant (issue 12): the reference station's point minimises cd/cl on the path through its own load
+    # with c_ref, so a station at r_ref gets the same load, the same point and the chord c_ref.
+    prob = _problem(kind, chord_form=chord_form)
+    np.testing.assert_allclose(prob.get_val("radii")[:, REF_STATION] / prob.get_val("radius"), 0.5, rtol=1e-14)
+    np.testing.assert_allclose(prob.get_val("chord")[:, REF_STATION], [0.1, 0.2, 0.3], rtol=1e-9)
+    np.testing.assert_allclose(prob.get_val("alpha_star")[:, REF_STATION], prob.get_val("alpha_star_ref"),
+                               atol=1e-10)
+
+
+def test_stations_run_at_their_own_reynolds_number(kind):
+    # Re = rho W0 c / mu at every station (the BEM convention), with the chord that carries the ideal load.
+    prob = _problem(kind)
+    w0 = np.hypot(prob.get_val("v_axial")[:, None], prob.get_val("v_theta"))
+    reynolds = prob.get_val("rho")[:, None] * w0 * prob.get_val("chord") / prob.get_val("mu")[:, None]
+    np.testing.assert_allclose(prob.get_val("reynolds"), reynolds, rtol=1e-9)
+
+
+def test_bem_analysis_reproduces_the_local_design(kind):
+    # The blade elements of the local design run at their own (alpha, Re) point of the same polar, with
+    # Re = rho W0 c / mu as in the BEM analysis, and Eq. (25) holds, so BEM must return BILD's loads.  The
+    # accuracy is that of the two solves (BEM inflow angle, the loops' Newton tolerance), not of the polar
+    # model: the polar is evaluated at the same points by both.
+    polar = default_polar()
+    prob = _problem(kind)
+    result = analyze_rotor(prob.get_val("chord"), prob.get_val("twist"), prob.get_val("radius"),
+                           prob.get_val("hub_radius"), prob.get_val("rpm"), prob.get_val("v_axial"), 3, polar,
+                           altitude=prob.get_val("altitude"))
+    np.testing.assert_allclose(result.thrust, prob.get_val("thrust"), rtol=1e-6)
+    np.testing.assert_allclose(result.torque, prob.get_val("torque"), rtol=1e-6)
+    np.testing.assert_allclose(result.phi, prob.get_val("phi"), atol=1e-8)
+
+
+def test_reynolds_independent_polar_gives_the_reference_design(kind):
+    # Invariant: with no Re dependence the fixed-load optimum of every station is the max-L/D point.
+    polar = sweep_polar("naca4412@re=1e6")
+    local = _problem(kind, polar=polar)
+    reference = _problem(kind, section_point="reference", polar=polar)
+    for name in ("chord", "twist", "thrust", "torque", "energy_loss"):
+        np.testing.assert_allclose(local.get_val(name), reference.get_val(name), rtol=1e-9, atol=1e-12)
+
+
+@pytest.mark.parametrize("mode", ["fwd", "rev"])
+def test_totals_complex_step(kind, mode):
+    prob = _problem(kind, complex_step=True, mode=mode, num_radial=5)
+    data = prob.check_totals(of=["thrust", "torque", "energy_loss", "chord", "twist"],
+                             wrt=["v_axial", "rpm", "radius", "ref_chord", "ref_radius_ratio", "altitude"],
+                             method="cs", out_stream=None)
+    assert_totals_match(data, atol=1e-10, rtol=1e-6)
+    assert_no_approx_partials(prob.model, method="cs")
+    assert_no_approx_partials(prob.model, method="fd")
+
+
+def test_thrust_target_local_design():
+    prob = om.Problem(BILDGroup(num_nodes=2, num_radial=8, section_point="local", thrust_target=True),
+                      reports=False)
+    prob.setup()
+    prob.set_val("v_axial", [0.0, 15.0])
+    prob.set_val("thrust_target", [900.0, 700.0])
+    prob.run_model()
+    np.testing.assert_allclose(prob.get_val("thrust"), [900.0, 700.0], rtol=1e-10)
+
+
+@pytest.mark.parametrize("value", ["Local", "max_ld", None, 1])
+def test_invalid_section_point_is_one_line(value):
+    with pytest.raises(ValueError, match="section_point must be 'reference' or 'local'"):
+        BILDGroup(section_point=value)
+
+
+def test_mach_or_spanwise_polar_is_refused():
+    prob = om.Problem(BILDGroup(num_nodes=1, num_radial=4, section_point="local",
+                                polar=sweep_polar("0.2:naca4412;1:naca4415")), reports=False)
+    with pytest.raises(ValueError, match="varies with the Reynolds number only"):
+        prob.setup()
