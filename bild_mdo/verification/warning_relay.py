@@ -1,7 +1,7 @@
 """Warnings of a sweep shown once, as the user's warning display prints them, above the progress bar.
 
 Every worker process has its own copy of the models, so a warning such as the
-polar's Reynolds-number clamp (warned once per polar) would otherwise print
+polar's Reynolds-number extrapolation (warned once per polar) would otherwise print
 once per worker, with a source path, in the middle of the progress bar.  The
 runner records the warnings of each case (:func:`recorded_warnings`), sends
 them back with the result, and :class:`WarningRelay` re-issues each distinct
