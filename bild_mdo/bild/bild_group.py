@@ -56,6 +56,23 @@ def _check_correction(name, value):
         raise ValueError(f"{name} must be None (no correction) or a positive number k, got {value!r}")
 
 
+
+def _add_ideal_stations(group, size, loss, checked, along):
+    """Add eta2 -> induced velocity -> inflow angle -> momentum loads, the per-station chain both section points use."""
+    group.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
+                        promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
+                        promotes_outputs=["eta2"])
+    group.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
+                        promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
+                        promotes_outputs=["u_axial", "u_theta"])
+    group.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
+                        promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
+                        promotes_outputs=["phi", "inflow_speed", "twist"])
+    group.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
+                        promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
+                                         "hub_radius"],
+                        promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+
 class BILDGroup(om.Group):
     """Ideal chord and twist of a rotor and its performance, by the BILD method.
 
@@ -289,19 +306,7 @@ class BILDGroup(om.Group):
                                promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
                                promotes_outputs=["ideal_loading_constant"])
             along = dict(varies_along_span=spanwise)
-            self.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
-                               promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
-                               promotes_outputs=["eta2"])
-            self.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
-                               promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
-                               promotes_outputs=["u_axial", "u_theta"])
-            self.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
-                               promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
-                               promotes_outputs=["phi", "inflow_speed", "twist"])
-            self.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
-                               promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
-                                                "hub_radius"],
-                               promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+            _add_ideal_stations(self, size, loss, checked, along)
             chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
             self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
                                                   **along),
@@ -383,19 +388,7 @@ class BILDGroup(om.Group):
                            promotes_outputs=["ideal_loading_constant"])
         along = dict(varies_along_span=True)
         loop = _coupled_loop(self.add_subsystem("section_point_loop", om.Group(), promotes=["*"]))
-        loop.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
-                           promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
-                           promotes_outputs=["eta2"])
-        loop.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
-                           promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
-                           promotes_outputs=["u_axial", "u_theta"])
-        loop.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
-                           promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
-                           promotes_outputs=["phi", "inflow_speed", "twist"])
-        loop.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
-                           promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
-                                            "hub_radius"],
-                           promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+        _add_ideal_stations(loop, size, loss, checked, along)
         chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
         loop.add_subsystem("load_reynolds", LoadReynoldsComp(**size, **form),
                            promotes_inputs=chord_load + ["inflow_speed", "v_theta", "v_axial", "mu"],
