@@ -20,9 +20,9 @@ built-in NACA 4412 polar and ``num_radial = 30``:
   respect to every input: v_axial, rpm, radius, hub and reference radius
   ratios, ref_chord, altitude) in fwd and rev mode, each timed right after the
   ``run_model`` of the same design, and the ratio of the two; once with the
-  group's linear solver as shipped and once with
-  ``DirectSolver(assemble_jac=True)`` set on the group (one sparse LU per
-  linearisation, then one back-substitution per seed);
+  group's linear solver as shipped (``DirectSolver(assemble_jac=True)``: one
+  sparse LU per linearisation, then one back-substitution per seed) and once
+  with ``LinearRunOnce`` set by the user (one sweep of the chain per seed);
 * every time twice: wall time (``time.perf_counter``) and the CPU time of this
   thread (``time.thread_time``), which other processes on a shared machine
   do not inflate; the ratios are given for both;
@@ -97,11 +97,11 @@ def floor_problem(size=NUM_RADIAL):
     return prob
 
 
-def make_problem(values, polar, mode="auto", direct=False):
+def make_problem(values, polar, mode="auto", run_once=False):
     nn = values["rpm"].size
     group = BILDGroup(num_nodes=nn, num_radial=NUM_RADIAL, polar=polar)
-    if direct:
-        group.linear_solver = om.DirectSolver(assemble_jac=True)
+    if run_once:
+        group.linear_solver = om.LinearRunOnce()
     prob = om.Problem(group, reports=False)
     prob.setup(check=False, mode=mode)
     set_design(prob, values)
@@ -148,9 +148,9 @@ def single_and_floor(designs, polar, repeats):
     return bild_times, floor_times, bild_cpu, floor_cpu
 
 
-def totals(designs, polar, mode, repeats, direct):
+def totals(designs, polar, mode, repeats, run_once):
     """Median times of ``run_model`` and ``compute_totals`` of one design, each pair on the same design."""
-    prob = make_problem(designs[0], polar, mode=mode, direct=direct)
+    prob = make_problem(designs[0], polar, mode=mode, run_once=run_once)
     prob.run_model()
     prob.compute_totals(of=OF, wrt=INPUTS)  # builds the total-derivative machinery
     run_times, total_times, run_cpu, total_cpu = [], [], [], []
@@ -207,10 +207,10 @@ def main(repeats=40):
           f"all finite: {bool(np.all(np.isfinite(chord)))}")
 
     size = 2 + 2 * NUM_RADIAL
-    for direct in (False, True):
-        label = "DirectSolver(assemble_jac=True)" if direct else "linear solver as shipped"
+    for run_once in (False, True):
+        label = "LinearRunOnce set by the user" if run_once else "as shipped, DirectSolver(assemble_jac=True)"
         for mode in ("fwd", "rev"):
-            run, total, run_cpu, total_cpu = totals(designs, polar, mode, max(repeats // 2, 10), direct)
+            run, total, run_cpu, total_cpu = totals(designs, polar, mode, max(repeats // 2, 10), run_once)
             print(f"  compute_totals ({size} x {len(INPUTS)}), {mode}, {label}: median {total * 1e3:7.3f} ms "
                   f"(run_model {run * 1e3:7.3f} ms) ratio {total / run:5.2f}x; CPU {total_cpu * 1e3:7.3f} ms "
                   f"(run_model {run_cpu * 1e3:7.3f} ms) ratio {total_cpu / run_cpu:5.2f}x (target <= 2x)")

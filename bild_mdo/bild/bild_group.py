@@ -78,7 +78,10 @@ class BILDGroup(om.Group):
 
     Algorithm 1 of the paper as a feed-forward chain on RunOnce (the two
     implicit components, the reference-station BEM solve and the quartic for
-    ``eta2``, solve themselves and provide exact linear solves)::
+    ``eta2``, solve themselves and provide exact linear solves).  The group's
+    linear solver is ``DirectSolver(assemble_jac=True)`` unless the user
+    sets another after construction: total derivatives in either mode then cost one
+    sparse LU and one back-substitution per seed::
 
         atmosphere (ISA)            altitude -> rho, mu, a
         [advance_ratio]             J, rpm, R -> V_x            (input_mode='advance_ratio')
@@ -187,7 +190,7 @@ class BILDGroup(om.Group):
         is, and ``ref_chord`` is the output that gives ``thrust =
         thrust_target`` (to 1e-12 relative), solved per design by
         :class:`~bild_mdo.bild.thrust_target.ReferenceChordSolver` with exact
-        totals (the group's linear solver is a DirectSolver); a target out of
+        totals; a target out of
         reach is an infeasible design.
 
     Inputs
@@ -229,6 +232,13 @@ class BILDGroup(om.Group):
         ``[nn, nr]`` and ``alpha_star_ref, cl_star_ref, cd_star_ref`` ``[nn]``
         for a polar that varies along the span).
     """
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        # One sparse LU per linearisation, then one back-substitution per seed: with LinearRunOnce a
+        # reverse compute_totals sweeps the whole chain once per seed (benchmarks/bild_speed.py).  Set
+        # here, not in setup, so that a solver the user sets after construction wins.
+        self.linear_solver = om.DirectSolver(assemble_jac=True)
 
     def initialize(self):
         declare_size_options(self.options)
@@ -328,7 +338,6 @@ class BILDGroup(om.Group):
                 "thrust_target_balance", ThrustTargetComp(**node, **checked),
                 promotes_inputs=["thrust", "thrust_target"], promotes_outputs=["ref_chord"])
             self.nonlinear_solver = ReferenceChordSolver()
-            self.linear_solver = om.DirectSolver(assemble_jac=True)
         self.add_subsystem("feasibility_check", FeasibilityComp(**node, ledger=self.feasibility,
                                                                 on_infeasible=opts["on_infeasible"]),
                            promotes_outputs=["feasible"])
