@@ -53,13 +53,15 @@ class IsaState(NamedTuple):
     dpressure_dh: np.ndarray
 
 
-def isa(altitude):
+def isa(altitude, derivatives=True):
     """ISA troposphere at geometric altitude.
 
     Parameters
     ----------
     altitude : array_like
         Geometric altitude (m), 0 ... 11,000 (real or complex-step).
+    derivatives : bool
+        False: the derivative fields are None (a run without derivatives).
 
     Returns
     -------
@@ -74,20 +76,22 @@ def isa(altitude):
     """
     h = np.asarray(altitude)
     h_real = np.real(h)
-    if not np.all(np.isfinite(h_real)) or np.any(h_real < 0.0) or np.any(h_real > MAX_ALTITUDE):
+    # One reduction (NaN fails both comparisons, so this also rejects values that are not finite).
+    if not ((h_real >= 0.0) & (h_real <= MAX_ALTITUDE)).all():
         raise ValueError(
             f"altitude must be within 0 ... {MAX_ALTITUDE:g} m (ISA troposphere); got "
             f"min {np.min(h_real):g} m, max {np.max(h_real):g} m")
     H = EARTH_RADIUS * h / (EARTH_RADIUS + h)
-    dH_dh = (EARTH_RADIUS / (EARTH_RADIUS + h)) ** 2
     T = T0 - LAPSE_RATE * H
     theta = T / T0
     p = P0 * theta**_EXPONENT
     rho = p / (R_AIR * T)
     mu = SUTHERLAND_BETA * T**1.5 / (T + SUTHERLAND_S)
     a = np.sqrt(GAMMA * R_AIR * T)
+    if not derivatives:
+        return IsaState(rho, mu, a, T, p, None, None, None, None, None)
 
-    dT_dh = -LAPSE_RATE * dH_dh
+    dT_dh = -LAPSE_RATE * (EARTH_RADIUS / (EARTH_RADIUS + h)) ** 2
     dp_dh = _EXPONENT * p / T * dT_dh
     drho_dh = (_EXPONENT - 1.0) * rho / T * dT_dh
     dmu_dh = mu * (1.5 / T - 1.0 / (T + SUTHERLAND_S)) * dT_dh
@@ -135,14 +139,14 @@ class AtmosphereComp(om.ExplicitComponent):
         for name in ("rho", "mu", "speed_of_sound"):
             self.declare_partials(name, "altitude", rows=rows, cols=cols)
 
-    def _isa(self, altitude):
+    def _isa(self, altitude, derivatives=True):
         try:
-            return isa(altitude)
+            return isa(altitude, derivatives)
         except ValueError as err:
             raise om.AnalysisError(f"{self.msginfo}: {err}") from err
 
     def compute(self, inputs, outputs):
-        state = self._isa(inputs["altitude"])
+        state = self._isa(inputs["altitude"], derivatives=False)
         outputs["rho"] = state.rho
         outputs["mu"] = state.mu
         outputs["speed_of_sound"] = state.speed_of_sound

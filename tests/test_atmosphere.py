@@ -72,3 +72,14 @@ def test_component_rejects_out_of_range(altitude):
 def test_component_is_per_design():
     # The atmosphere depends on the altitude of a design only: it has no radial size option.
     assert "num_radial" not in AtmosphereComp().options
+
+
+def test_values_without_derivatives_are_the_same():
+    # A run without derivatives (AtmosphereComp.compute) evaluates the same formulas, and still checks the range.
+    altitude = np.array([0.0, 1234.5, 11000.0])
+    full, values = isa(altitude), isa(altitude, derivatives=False)
+    for name in ("rho", "mu", "speed_of_sound", "temperature", "pressure"):
+        np.testing.assert_array_equal(getattr(values, name), getattr(full, name))
+    assert values.drho_dh is None
+    with pytest.raises(ValueError, match="altitude"):
+        isa(np.array([np.nan]), derivatives=False)

@@ -127,14 +127,15 @@ class AnalyticPolar(Polar):
                 f"reynolds_exponent={self.reynolds_exponent:g})")
 
     def _reynolds_factor(self, reynolds):
-        """``f = (Re/Re_ref)^-n`` and ``df/dRe``."""
+        """``f = (Re/Re_ref)^-n``, ``df/dRe = -n f / Re`` and ``d2f/dRe2 = n (n + 1) f / Re^2``."""
         if self.reynolds_exponent == 0.0:
-            return np.ones_like(reynolds), np.zeros_like(reynolds)
+            return np.ones_like(reynolds), np.zeros_like(reynolds), np.zeros_like(reynolds)
         if np.any(~(np.real(reynolds) > 0)):
             raise ValueError("AnalyticPolar with reynolds_exponent != 0 needs positive "
                              f"Reynolds numbers; got min {np.min(reynolds)!r}")
-        f = (reynolds / self.reynolds_ref) ** (-self.reynolds_exponent)
-        return f, -self.reynolds_exponent * f / reynolds
+        n = self.reynolds_exponent
+        f = (reynolds / self.reynolds_ref) ** (-n)
+        return f, -n * f / reynolds, n * (n + 1.0) * f / reynolds**2
 
     def _all(self, alpha, reynolds):
         """Values, first and second derivatives of cl and cd.
@@ -144,7 +145,7 @@ class AnalyticPolar(Polar):
         """
         alpha = alpha - 2.0 * np.pi * np.floor((np.real(alpha) + np.pi) / (2.0 * np.pi))
         alpha, reynolds = np.broadcast_arrays(alpha, reynolds)
-        f, df = self._reynolds_factor(reynolds)
+        f, df, d2f = self._reynolds_factor(reynolds)
 
         cl_att = self.cl0 + self.cl_alpha * alpha
         dcl_att = self.cl_alpha
@@ -152,6 +153,7 @@ class AnalyticPolar(Polar):
         dcd_att = 2.0 * self.k * (cl_att - self.cl_cd_min) * self.cl_alpha
         d2cd_att = 2.0 * self.k * self.cl_alpha**2
         cd_att_re = self.cd0 * df
+        cd_att_rere = self.cd0 * d2f
 
         cl, cd, dcd = cl_att.copy(), cd_att.copy(), dcd_att.copy()
         dcl = np.full_like(cl, dcl_att)
@@ -159,6 +161,7 @@ class AnalyticPolar(Polar):
         d2cd = np.full_like(cl, d2cd_att)
         cd_re = cd_att_re * np.ones_like(cl)
         cd_are = np.zeros_like(cl)
+        cd_rere = cd_att_rere * np.ones_like(cl)
         two_dw = 2.0 * self.stall_half_width
         for sign, (a_s, cl_s, cd_s) in zip((1.0, -1.0), self._sides):
             # Only the points past the matching point need the Viterna branch.
@@ -184,11 +187,13 @@ class AnalyticPolar(Polar):
             cd[idx] += w * e_cd
             dcd[idx] += dw * e_cd + w * de_cd
             d2cd[idx] += d2w * e_cd + 2.0 * dw * de_cd + w * d2e_cd
+            # The Viterna side does not depend on Re: the blend scales the attached Re terms by 1 - w.
             re_idx = cd_att_re[idx] if np.ndim(cd_att_re) else cd_att_re
             cd_re[idx] -= w * re_idx
             cd_are[idx] -= dw * re_idx
+            cd_rere[idx] -= w * (cd_att_rere[idx] if np.ndim(cd_att_rere) else cd_att_rere)
         zeros = np.zeros_like(cl)
-        return (cl, cd, dcl, zeros, dcd, cd_re), (d2cl, zeros, d2cd, cd_are)
+        return (cl, cd, dcl, zeros, dcd, cd_re), (d2cl, zeros, d2cd, cd_are, zeros, cd_rere)
 
     def _evaluate_real(self, alpha, reynolds):
         return PolarValues(*self._all(alpha, reynolds)[0])
@@ -214,7 +219,7 @@ class AnalyticPolar(Polar):
             ``alpha*`` (rad), ``cl*``, ``cd*``.
         """
         reynolds = np.asarray(reynolds, dtype=float)
-        f, _ = self._reynolds_factor(reynolds)
+        f = self._reynolds_factor(reynolds)[0]
         cl = np.sqrt(self.cl_cd_min**2 + self.cd0 * f / self.k)
         cd = self.cd0 * f + self.k * (cl - self.cl_cd_min) ** 2
         return (cl - self.cl0) / self.cl_alpha, cl, cd

@@ -207,8 +207,10 @@ class CompressiblePolar(Polar):
         m, inside = self._clamped(mach)
         _, f_c, f_cc, _, f_cm = self._rule(v.cl, m, self.reference_mach)
         zero = np.zeros_like(f_c)
+        # cl = F(cl_base, M): the chain rule to second order; cd is not corrected.
         return MachPolarSecondDerivatives(
-            f_cc * v.dcl_dalpha ** 2 + f_c * s.d2cl_dalpha2,
-            f_cc * v.dcl_dalpha * v.dcl_dre + f_c * s.d2cl_dalpha_dre,
-            s.d2cd_dalpha2, s.d2cd_dalpha_dre,
-            np.where(inside, f_cm * v.dcl_dalpha, 0.0), zero)
+            d2cl_dalpha2=f_cc * v.dcl_dalpha ** 2 + f_c * s.d2cl_dalpha2,
+            d2cl_dalpha_dre=f_cc * v.dcl_dalpha * v.dcl_dre + f_c * s.d2cl_dalpha_dre,
+            d2cd_dalpha2=s.d2cd_dalpha2, d2cd_dalpha_dre=s.d2cd_dalpha_dre,
+            d2cl_dre2=f_cc * v.dcl_dre ** 2 + f_c * s.d2cl_dre2, d2cd_dre2=s.d2cd_dre2,
+            d2cl_dalpha_dmach=np.where(inside, f_cm * v.dcl_dalpha, 0.0), d2cd_dalpha_dmach=zero)

@@ -14,6 +14,18 @@ polar to round-off, with the same implicit-function derivatives
 (:func:`~bild_mdo.airfoil.max_lift_to_drag.point_from_polar_values`), not an
 interpolated value.
 
+The first pass needs only the polar's first derivatives: its Newton step
+divides by the nodes' curvature ``dg/dalpha`` interpolated linearly in
+``ln Re`` (relative error below 2e-3 at 99 % of Reynolds numbers, 1.3e-2 at
+most, on the built-in NACA 4412), and is applied to first order where it is
+below ``STEP_TOL / 2`` (about 9 queries in 10), so the point differs from
+the exact step's by that relative error times ``STEP_TOL / 2``: below
+1e-12 rad (and below ``STEP_TOL / 2`` whatever the error); the other queries
+continue with exact passes.  With ``derivatives=False`` the
+second derivatives at the point, which only the Reynolds derivatives need,
+are evaluated when those are first used (:class:`TabulatedPoint`): a run of
+BILD without derivatives evaluates the polar once per design.
+
 Safeguards: a query falls back to the scan of the exact solver when its grid
 interval is not smooth (a jump of the node values away from their slopes: the
 largest-L/D maximum switches between two local maxima there), when a node
@@ -56,12 +68,14 @@ _TABLES = {}
 
 
 class _Table:
-    """Nodes ``k`` (``ln Re = k LOG_RE_STEP``) from ``first``: angle, slope ``dalpha*/dln Re``, known, smooth."""
+    """Nodes ``k`` (``ln Re = k LOG_RE_STEP``) from ``first``: angle, slope ``dalpha*/dln Re``, curvature
+    ``dg/dalpha`` of ``g = cl_alpha cd - cl cd_alpha`` at the root, known, failed."""
 
     def __init__(self):
         self.first = 0
         self.alpha = np.zeros(0)
         self.slope = np.zeros(0)
+        self.curvature = np.zeros(0)
         self.known = np.zeros(0, dtype=bool)
         self.failed = np.zeros(0, dtype=bool)
 
@@ -73,7 +87,8 @@ class _Table:
         last = max(k_hi, self.first + self.alpha.size - 1) if self.alpha.size else k_hi
         size = last - first + 1
         offset = self.first - first
-        for name, dtype in (("alpha", float), ("slope", float), ("known", bool), ("failed", bool)):
+        for name, dtype in (("alpha", float), ("slope", float), ("curvature", float), ("known", bool),
+                            ("failed", bool)):
             grown = np.zeros(size, dtype=dtype)
             old = getattr(self, name)
             grown[offset:offset + old.size] = old
@@ -118,13 +133,17 @@ def _fill(polar, table, nodes):
             table.known[missing] = True
             table.failed[missing] = True
             return
+        v = polar.evaluate(point.alpha, reynolds)
+        second = polar.second_derivatives(point.alpha, reynolds)
     table.alpha[missing] = point.alpha
     table.slope[missing] = point.dalpha_dre * reynolds
+    table.curvature[missing] = second.d2cl_dalpha2 * v.cd - v.cl * second.d2cd_dalpha2
     table.known[missing] = True
 
 
 def _interpolate(table, log_re):
-    """Hermite interpolant of the table at ``ln Re``, and whether the interval may be used."""
+    """Hermite interpolant of the table at ``ln Re``, the linear one of its curvature, and whether the interval
+    may be used."""
     t = log_re / LOG_RE_STEP
     k = np.floor(t)
     u = t - k
@@ -135,12 +154,14 @@ def _interpolate(table, log_re):
     alpha = (1.0 + 2.0 * u) * v * v * a0 + u * v * v * m0 + u * u * (3.0 - 2.0 * u) * a1 - u * u * v * m1
     smooth = ~(table.failed[i] | table.failed[i + 1])
     smooth &= (np.abs(a1 - a0 - m0) <= TRUST) & (np.abs(a1 - a0 - m1) <= TRUST)
-    return alpha, smooth
+    return alpha, v * table.curvature[i] + u * table.curvature[i + 1], smooth
 
 
-def _newton_pass(polar, alpha, reynolds):
-    """Polar values at ``alpha``, the Newton correction of ``g = 0`` and whether it is a maximum with lift."""
-    v = polar.evaluate(alpha, reynolds)
+def _newton_pass(polar, alpha, reynolds, v=None):
+    """Polar values at ``alpha`` (``v`` if given), the Newton correction of ``g = 0`` and whether it is a
+    maximum with lift."""
+    if v is None:
+        v = polar.evaluate(alpha, reynolds)
     s = polar.second_derivatives(alpha, reynolds)
     g = v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha
     dg = s.d2cl_dalpha2 * v.cd - v.cl * s.d2cd_dalpha2
@@ -150,8 +171,15 @@ def _newton_pass(polar, alpha, reynolds):
     return v, s, step, good
 
 
-def _take(values, index):
+def _taken(values, index):
     return type(values)(*(x[index] for x in values))
+
+
+def _scattered(values, index, n):
+    """``values`` at the flat positions ``index`` of ``n`` (zero elsewhere)."""
+    full = type(values)(*(np.zeros(n) for _ in values))
+    _put(full, index, values)
+    return full
 
 
 def _put(target, index, values):
@@ -159,7 +187,37 @@ def _put(target, index, values):
         field[index] = x
 
 
-def max_lift_to_drag_tabulated(polar, reynolds):
+class TabulatedPoint:
+    """A maximum-L/D point whose Reynolds derivatives are evaluated on first use.
+
+    ``alpha, cl, cd`` (and ``dalpha_dre, dcl_dre, dcd_dre``) as in
+    :class:`~bild_mdo.airfoil.max_lift_to_drag.MaxLiftToDrag`.  The derivatives need the
+    polar's second derivatives at the point, one more polar call, which a run without
+    derivatives does not pay; :meth:`full` gives the complete point (computed once).
+    """
+
+    def __init__(self, polar, alpha, values, reynolds, correction, inputs):
+        self._state = (polar, alpha, values, reynolds, correction, inputs)
+        self._full = None
+        # As point_from_polar_values: the last Newton correction applied to first order.
+        self.alpha = np.reshape(alpha + correction, inputs.shape)
+        self.cl = np.reshape(values.cl + values.dcl_dalpha * correction, inputs.shape)
+        self.cd = np.reshape(values.cd + values.dcd_dalpha * correction, inputs.shape)
+
+    def full(self):
+        """The point with its derivatives, a :class:`~bild_mdo.airfoil.max_lift_to_drag.MaxLiftToDrag`."""
+        if self._full is None:
+            polar, alpha, values, reynolds, correction, inputs = self._state
+            second = polar.second_derivatives(alpha, reynolds)
+            self._full = point_from_polar_values(alpha, values, second, [inputs], [], inputs.shape, correction)
+        return self._full
+
+    dalpha_dre = property(lambda self: self.full().dalpha_dre)
+    dcl_dre = property(lambda self: self.full().dcl_dre)
+    dcd_dre = property(lambda self: self.full().dcd_dre)
+
+
+def max_lift_to_drag_tabulated(polar, reynolds, derivatives=True):
     """:func:`~bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag` (Reynolds number only), warm-started.
 
     Parameters
@@ -170,10 +228,13 @@ def max_lift_to_drag_tabulated(polar, reynolds):
     reynolds : array_like
         Chord Reynolds numbers, any shape; complex values (complex step) are
         carried to first order with the exact derivatives.
+    derivatives : bool
+        False: real Reynolds numbers may return a :class:`TabulatedPoint`,
+        whose derivatives cost one more polar call when first used.
 
     Returns
     -------
-    MaxLiftToDrag
+    MaxLiftToDrag or TabulatedPoint
         As :func:`~bild_mdo.airfoil.max_lift_to_drag.max_lift_to_drag`: the
         same root of the polar (to round-off) and the same derivatives.
 
@@ -187,37 +248,45 @@ def max_lift_to_drag_tabulated(polar, reynolds):
     if not (polar.varies_with_mach or polar.varies_along_span):
         table = _table_of(polar)
     re_flat = np.asarray(np.real(reynolds), dtype=float).ravel()
-    if table is None or not (np.all(np.isfinite(re_flat)) and np.all(re_flat > 0.0)):
+    if table is None or not (np.isfinite(re_flat).all() and (re_flat > 0.0).all()):
         return max_lift_to_drag(polar, reynolds)
     log_re = np.log(re_flat)
     k = np.floor(log_re / LOG_RE_STEP).astype(np.intp)
     nodes = np.concatenate([k, k + 1])
     lo, hi = nodes.min() - table.first, nodes.max() - table.first
-    if lo < 0 or hi >= table.alpha.size or not np.all(table.known[nodes - table.first]):
+    if lo < 0 or hi >= table.alpha.size or not table.known[nodes - table.first].all():
         # The polar's own warnings (a Reynolds number outside its data) come from the queried values.
         polar.evaluate(np.zeros_like(re_flat), re_flat)
         _fill(polar, table, nodes)
-    guess, smooth = _interpolate(table, log_re)
+    guess, curvature, smooth = _interpolate(table, log_re)
 
     n = re_flat.size
     alpha = guess.copy()
     correction = np.zeros(n)
-    v = s = None
+    v = None
     ok = np.zeros(n, dtype=bool)
     active = np.flatnonzero(smooth)
+    if active.size:
+        # First pass without second derivatives: the Newton step with the table's curvature dg/dalpha
+        # (linear in ln Re; module docstring) is applied where it is below STEP_TOL / 2.
+        v = polar.evaluate(guess[active], re_flat[active])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = -(v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha) / curvature[active]
+        last = (np.abs(step) <= 0.5 * STEP_TOL) & (curvature[active] < 0.0) & (v.cl > 0.0) & (v.cd > 0.0)
+        if active.size != n:
+            v = _scattered(v, active, n)
+        correction[active[last]] = step[last]
+        ok[active[last]] = True
+        active = active[~last]
+    # The others: exact Newton passes, the first with the values already found at the guess.
+    known = v is not None
     for _ in range(MAX_PASSES):
         if active.size == 0:
             break
-        va, sa, step, good = _newton_pass(polar, alpha[active], re_flat[active])
-        if v is None:
-            if active.size == n:
-                v, s = va, sa
-            else:
-                v = type(va)(*(np.zeros(n) for _ in va))
-                s = type(sa)(*(np.zeros(n) for _ in sa))
-        if v is not va:
-            _put(v, active, va)
-            _put(s, active, sa)
+        va, _, step, good = _newton_pass(polar, alpha[active], re_flat[active],
+                                         _taken(v, active) if known else None)
+        known = False
+        _put(v, active, va)
         good &= np.abs(alpha[active] + step - guess[active]) <= TRUST
         last = good & (np.abs(step) <= STEP_TOL)
         correction[active[last]] = step[last]
@@ -235,5 +304,5 @@ def max_lift_to_drag_tabulated(polar, reynolds):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             _put(v, fallback, polar.evaluate(exact.alpha, re_flat[fallback]))
-            _put(s, fallback, polar.second_derivatives(exact.alpha, re_flat[fallback]))
-    return point_from_polar_values(alpha, v, s, [reynolds], [], reynolds.shape, correction)
+    point = TabulatedPoint(polar, alpha, v, re_flat, correction, reynolds)
+    return point.full() if derivatives or np.iscomplexobj(reynolds) else point

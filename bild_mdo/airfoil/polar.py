@@ -3,8 +3,9 @@
 A polar maps angle of attack ``alpha`` (rad) and chord Reynolds number ``Re``
 to lift and drag coefficients, together with their first derivatives.  Users
 may supply their own polar: subclass :class:`Polar` and implement
-:meth:`Polar._evaluate_real` (and :meth:`Polar._second_derivatives_real` if the
-polar is used for the maximum-L/D point of BILD).
+:meth:`Polar._evaluate_real` (and :meth:`Polar._second_derivatives_real`, which
+returns a :class:`PolarSecondDerivatives`, if the polar is used for BILD's
+maximum-L/D point or its local section point).
 
 Two optional arguments extend every query (``evaluate``, ``second_derivatives``,
 ``max_lift_to_drag``); left out, the result and its cost are exactly those of
@@ -75,12 +76,19 @@ StationPolarValues = _extended("StationPolarValues", PolarValues, _MACH + _STATI
 
 
 class PolarSecondDerivatives(NamedTuple):
-    """Second derivatives needed by the implicit-function derivative of the max-L/D point."""
+    """Second derivatives of ``cl`` and ``cd`` (alpha in rad, Re nondimensional).
+
+    The implicit-function derivatives of the max-L/D point use the first four;
+    the local section point of the Reynolds-aware BILD
+    (:mod:`bild_mdo.bild.local_section_point`) also uses ``d2cl_dre2, d2cd_dre2``.
+    """
 
     d2cl_dalpha2: np.ndarray
     d2cl_dalpha_dre: np.ndarray
     d2cd_dalpha2: np.ndarray
     d2cd_dalpha_dre: np.ndarray
+    d2cl_dre2: np.ndarray
+    d2cd_dre2: np.ndarray
 
 
 MachPolarSecondDerivatives = _extended(

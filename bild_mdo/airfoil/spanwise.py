@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from bild_mdo.airfoil.polar import Polar, StationPolarSecondDerivatives, StationPolarValues
+from bild_mdo.airfoil.polar import MachPolarSecondDerivatives, Polar, StationPolarSecondDerivatives, StationPolarValues
 
 __all__ = ["SpanwisePolar", "smooth_step"]
 
@@ -161,6 +161,8 @@ class SpanwisePolar(Polar):
             v = polar._evaluate_mach_real(alpha[idx], reynolds[idx], mach[idx])
             return [*s, v.dcl_dalpha, v.dcd_dalpha]
 
-        total, slope = self._blend(radial_fraction, call, 8)
+        n_mach = len(MachPolarSecondDerivatives._fields)
+        total, slope = self._blend(radial_fraction, call, n_mach + 2)
         # d2c/(dalpha dx) = sum_k w_k'(x) dc_k/dalpha: the slopes of the last two fields.
-        return StationPolarSecondDerivatives(*(v.reshape(shape) for v in (*total[:6], slope[6], slope[7])))
+        return StationPolarSecondDerivatives(*(v.reshape(shape) for v in (*total[:n_mach], slope[n_mach],
+                                                                            slope[n_mach + 1])))

@@ -11,18 +11,11 @@ from bild_mdo.airfoil import cache, viterna
 from bild_mdo.airfoil.polar import Polar, PolarSecondDerivatives, PolarValues
 from bild_mdo.airfoil.sources.polar_data import PolarData
 from bild_mdo.airfoil.sources.readers import read_polar_table, read_xfoil_polar
+from bild_mdo.airfoil.surrogate_terms import EXTRAPOLATED_ROWS, extrapolate_log_reynolds, per_reynolds, spline_terms
 from bild_mdo.airfoil.viterna import (DEFAULT_CD_MAX, DEFAULT_CD_REVERSE, STALL_BLEND_HALF_WIDTH,
                                       default_alpha_grid, extend_polar)
 
-_LN10 = np.log(10.0)
-# Value, first and second alpha derivative of the cubics a[..., power] at local angles t.
-_ALPHA_HORNER = (lambda a, t: a[..., 0] + t * (a[..., 1] + t * (a[..., 2] + t * a[..., 3])),
-                 lambda a, t: a[..., 1] + t * (2.0 * a[..., 2] + 3.0 * t * a[..., 3]),
-                 lambda a, t: 2.0 * a[..., 2] + 6.0 * t * a[..., 3])
-# Points per block in evaluation: keeps the gathered coefficients (32 floats per
-# point) in cache-sized pieces.
-_CHUNK = 8192
-
+__all__ = ["TabulatedPolar", "code_version", "extrapolate_log_reynolds"]
 #: Version of the surrogate construction, part of every cache key (with a hash of
 #: this module's and viterna's source, and scipy's version): bump it when the
 #: numbers a TabulatedPolar gives change for the same data and settings.
@@ -91,8 +84,10 @@ class TabulatedPolar(Polar):
 
     Values, Re slopes, alpha derivatives up to the second and the cross terms
     ``d2/(dalpha dRe)`` are continuous at the edge, and so are the maximum-L/D
-    point and its derivatives.  ``cd > 0`` past the table: the positive edge
-    value times an exponential (ValueError if the edge value is not positive).
+    point and its derivatives; ``d2/dRe2`` jumps there (the continuation is C^1:
+    past the edge ``d2cl/dL2 = 0`` and ``d2cd/dL2 = cd (s/f)**2``).  ``cd > 0``
+    past the table: the positive edge value times an exponential (ValueError if
+    the edge value is not positive).
     (Clamped instead, the zero Re slope past the edge made Ipopt cycle there.)
     One warning per polar object says that Re is extrapolated.  All tables must
     share one Mach number (:attr:`data_mach`; tables at several Mach numbers:
@@ -345,106 +340,66 @@ class TabulatedPolar(Polar):
     # --------------------------------------------------------------- evaluation
     def _log_reynolds(self, reynolds):
         """Validated ``log10 Re``, the same clamped to the table (its edge), and the in-range mask; warns once."""
-        if not np.all(np.isfinite(reynolds)) or not np.all(reynolds > 0.0):
+        real = np.real(reynolds)
+        if not np.all(np.isfinite(real)) or not np.all(real > 0.0):
             raise ValueError(f"{self.name}: Reynolds numbers must be finite and > 0, got min "
-                             f"{np.min(reynolds)!r}")
+                             f"{np.min(real)!r}")
         log_re = np.log10(reynolds)
         lo, hi = self._log_re[0], self._log_re[-1]
-        inside = (log_re >= lo) & (log_re <= hi)
+        inside = (np.real(log_re) >= lo) & (np.real(log_re) <= hi)
         if not self._warned and not np.all(inside):
             self._warned = True
             how = ("are evaluated at it (one table: lift and drag do not change with Re)" if lo == hi else
                    "are extrapolated from the table's edge (lift linear in log Re, drag a power of Re)")
             # stacklevel: _compute -> _evaluate_real -> Polar.evaluate -> the caller.
             warnings.warn(f"{self.name}: Reynolds numbers outside the tabulated range {self.reynolds[0]:.4g}.."
-                          f"{self.reynolds[-1]:.4g} {how}; seen {reynolds.min():.4g}..{reynolds.max():.4g} "
+                          f"{self.reynolds[-1]:.4g} {how}; seen {real.min():.4g}..{real.max():.4g} "
                           "(warned once per polar)", stacklevel=5)
-        return log_re, np.clip(log_re, lo, hi), inside
+        return log_re, np.where(inside, log_re, np.clip(np.real(log_re), lo, hi)), inside
 
     def _terms(self, alpha, log_re, rows):
-        """Rows ``rows`` of the spline's ``f, f_a, f_aa, f_L, f_aL, f_aaL`` (``_a``: d/dalpha, ``_L``:
-        d/dlog10 Re) of lift and drag, shape (len(rows), 2, n)."""
-        n = alpha.size
-        out = np.empty((len(rows), 2, n))
-        for start in range(0, n, _CHUNK):
-            sl = slice(start, min(start + _CHUNK, n))
-            # Cell (i, j) and local coordinates t = alpha - alpha_i (wrapped: periodic), u = log10 Re - log_re[j].
-            j = np.searchsorted(self._log_re, log_re[sl], side="right") - 1
-            np.clip(j, 0, self._n_re_cells - 1, out=j)
-            u = log_re[sl] - self._log_re[j]
-            x = alpha[sl] - self._alpha0
-            if x.min() < 0.0 or x.max() >= 2.0 * np.pi:
-                x = np.mod(x, 2.0 * np.pi)
-            i = np.minimum((x / self._alpha_step).astype(np.intp), self._n_alpha_cells - 1)
-            t = x - i * self._alpha_step
-            c = np.take(self._coef, i * self._n_re_cells + j, axis=0).reshape(-1, 2, 4, 4)
-            # c[point, q, alpha power, log-Re power]; Horner in log Re (value and slope), then in alpha.
-            uu, tt = u[:, None, None], t[:, None]
-            in_re = (c[..., 0] + uu * (c[..., 1] + uu * (c[..., 2] + uu * c[..., 3])),
-                     c[..., 1] + uu * (2.0 * c[..., 2] + 3.0 * uu * c[..., 3]))
-            for k, row in enumerate(rows):
-                out[k, :, sl] = _ALPHA_HORNER[row % 3](in_re[row // 3], tt).T
-        return out
+        """Rows ``rows`` of the spline's terms (:data:`~bild_mdo.airfoil.surrogate_terms.SPLINE_ROWS`)."""
+        grid = (self._alpha0, self._alpha_step, self._n_alpha_cells, self._n_re_cells)
+        return spline_terms(self._coef, grid, self._log_re, alpha, log_re, rows)
 
     def _compute(self, alpha, reynolds, second):
+        """``[c, c_alpha, c_Re]`` (or with ``second`` ``[c_alpha2, c_alpha_Re, c_Re2]``) of cl and of cd.
+
+        Complex-step safe in ``alpha`` and ``reynolds``: the tests check the derivatives with it.
+        """
         shape, a, r = alpha.shape, alpha.ravel(), reynolds.ravel()
         if not np.all(np.isfinite(a)):
             raise ValueError(f"{self.name}: angle of attack must be finite")
         log_re, edge, inside = self._log_reynolds(r)
-        rows = (2, 4) if second else (0, 1, 3)
+        # f_aa, f_aL, f_L, f_LL or f, f_a, f_L (rows of surrogate_terms.SPLINE_ROWS).
+        rows = (2, 4, 3, 6) if second else (0, 1, 3)
         out = self._terms(a, edge, rows)
         # Past the table: the C^1 continuation (class docstring); one table is constant in Re as it is.
         past = np.flatnonzero(~inside) if self.reynolds.size > 1 else ()
         if len(past):
             terms = self._terms(a[past], edge[past], range(6))
-            if not np.all(terms[0, 1] > 0.0):
-                bad = past[np.argmin(terms[0, 1])]
-                raise ValueError(f"{self.name}: cd <= 0 at the table edge Re = {10.0 ** edge[bad]:.4g}, alpha = "
-                                 f"{np.degrees(a[bad]):.4g} deg: cannot extrapolate it to Re = {r[bad]:.4g}")
+            if not np.all(np.real(terms[0, 1]) > 0.0):
+                bad = past[np.argmin(np.real(terms[0, 1]))]
+                raise ValueError(f"{self.name}: cd <= 0 at the table edge Re = {10.0 ** np.real(edge[bad]):.4g}, "
+                                 f"alpha = {np.degrees(np.real(a[bad])):.4g} deg: cannot extrapolate it to Re = "
+                                 f"{np.real(r[bad]):.4g}")
             extrapolated = extrapolate_log_reynolds(terms, log_re[past] - edge[past])
             if not np.all(np.isfinite(extrapolated[0][1])):
-                raise ValueError(f"{self.name}: cd extrapolated to Re = {r[past].min():.4g}..{r[past].max():.4g} "
-                                 "overflows: too far from the table's Reynolds numbers")
-            out[:, :, past] = [extrapolated[row] for row in rows]
-        # d/dRe = d/dlog10(Re) / (Re ln 10).
-        out[-1] *= 1.0 / (r * _LN10)
-        return [x.reshape(shape) for x in out[:, 0]], [x.reshape(shape) for x in out[:, 1]]
+                raise ValueError(f"{self.name}: cd extrapolated to Re = {np.real(r[past]).min():.4g}.."
+                                 f"{np.real(r[past]).max():.4g} overflows: too far from the table's Reynolds numbers")
+            out[:, :, past] = [extrapolated[EXTRAPOLATED_ROWS.index(row)] for row in rows]
+        if second:
+            to_re = per_reynolds({"f_aL": out[1], "f_L": out[2], "f_LL": out[3]}, r)
+            out = (out[0], to_re["f_aRe"], to_re["f_ReRe"])
+        else:
+            out = (out[0], out[1], per_reynolds({"f_L": out[2]}, r)["f_Re"])
+        return [x[0].reshape(shape) for x in out], [x[1].reshape(shape) for x in out]
 
     def _evaluate_real(self, alpha, reynolds):
         (cl, dcl_da, dcl_dre), (cd, dcd_da, dcd_dre) = self._compute(alpha, reynolds, second=False)
         return PolarValues(cl, cd, dcl_da, dcl_dre, dcd_da, dcd_dre)
 
     def _second_derivatives_real(self, alpha, reynolds):
-        (d2cl, d2cl_dre), (d2cd, d2cd_dre) = self._compute(alpha, reynolds, second=True)
-        return PolarSecondDerivatives(d2cl, d2cl_dre, d2cd, d2cd_dre)
+        (cl_aa, cl_are, cl_rere), (cd_aa, cd_are, cd_rere) = self._compute(alpha, reynolds, second=True)
+        return PolarSecondDerivatives(cl_aa, cl_are, cd_aa, cd_are, cl_rere, cd_rere)
 
-
-def extrapolate_log_reynolds(edge, delta):
-    """Lift and drag at ``d = L - L_e`` past a table edge ``L_e`` (``L = log10 Re``; :class:`TabulatedPolar`).
-
-    Complex-step safe in ``edge`` and ``delta``.
-
-    Parameters
-    ----------
-    edge : ndarray, shape (6, 2, n)
-        ``f, f_a, f_aa, s, s_a, s_aa`` (``_a``: d/dalpha, rad) of lift
-        (``[:, 0]``) and drag (``[:, 1]``, ``f > 0``) at the edge.
-    delta : ndarray, shape (n,)
-        ``L - L_e``.
-
-    Returns
-    -------
-    tuple of 5 ndarray, shape (2, n)
-        ``c, c_a, c_aa, c_L, c_aL`` of lift and drag at ``L``.
-    """
-    f, f_a, f_aa, s, s_a, s_aa = edge[:, 0]
-    lift = (f + delta * s, f_a + delta * s_a, f_aa + delta * s_aa, s, s_a)
-    f, f_a, f_aa, s, s_a, s_aa = edge[:, 1]
-    # log cd = log f + d m, m = s / f; p_a = d(log f)/dalpha.
-    m, p_a = s / f, f_a / f
-    m_a = (s_a - m * f_a) / f
-    m_aa = (s_aa - m * f_aa) / f - 2.0 * m_a * p_a
-    log_a, log_aa = p_a + delta * m_a, f_aa / f - p_a * p_a + delta * m_aa
-    cd = f * np.exp(delta * m)
-    drag = (cd, cd * log_a, cd * (log_aa + log_a * log_a), cd * m, cd * (m * log_a + m_a))
-    return tuple(np.stack([x, y]) for x, y in zip(lift, drag))

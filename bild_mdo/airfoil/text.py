@@ -89,7 +89,7 @@ class FixedReynoldsPolar(Polar):
     @staticmethod
     def _second(values):
         zero = np.zeros_like(values.d2cl_dalpha2)
-        return values._replace(d2cl_dalpha_dre=zero, d2cd_dalpha_dre=zero)
+        return values._replace(d2cl_dalpha_dre=zero, d2cd_dalpha_dre=zero, d2cl_dre2=zero, d2cd_dre2=zero)
 
     def _evaluate_real(self, alpha, reynolds):
         return self._values(self.base._evaluate_real(alpha, self._frozen(alpha)))

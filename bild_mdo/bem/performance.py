@@ -37,7 +37,11 @@ def _abs(x):
 
 def _check_power(Q, rpm):
     """Raise where the metrics of Table 2 would divide by a zero power or rotor speed."""
-    q, n = np.broadcast_arrays(np.real(Q), np.real(rpm))
+    q, n = np.asarray(np.real(Q)), np.asarray(np.real(rpm))
+    # One pass for the usual case (this runs for every design); the messages below name the first failure.
+    if (n > 0.0).all() and np.isfinite(n).all() and (q != 0.0).all() and np.isfinite(q).all():
+        return
+    q, n = np.broadcast_arrays(q, n)
     q, n = np.atleast_1d(q), np.atleast_1d(n)
     checks = (
         (~(n > 0.0) | ~np.isfinite(n), "rpm",
@@ -53,7 +57,8 @@ def _check_power(Q, rpm):
             raise om.AnalysisError(f"rotor performance: {name} = {value!r} at node {node}: {rule}.")
 
 
-def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades, speed_of_sound=SEA_LEVEL_SPEED_OF_SOUND):
+def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades, speed_of_sound=SEA_LEVEL_SPEED_OF_SOUND,
+                      partials=True):
     """Performance metrics of Table 2 and their partials with respect to the primitives.
 
     Parameters
@@ -68,12 +73,14 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades, speed_of_s
         Number of blades B.
     speed_of_sound : array_like
         Speed of sound a (m/s), for the tip Mach number ``sqrt(V_x^2 + (Omega R)^2) / a``.
+    partials : bool
+        False: return ``None`` for the partials (a run without derivatives).
 
     Returns
     -------
     values : dict
         Output name -> array.
-    partials : dict
+    partials : dict or None
         Output name -> {primitive: array}; primitives are 'T', 'Q', 'S', 'v_axial',
         'rpm', 'radius', 'rho', 'speed_of_sound'.
 
@@ -110,6 +117,8 @@ def rotor_performance(T, Q, S, v_axial, rpm, radius, rho, num_blades, speed_of_s
     values = {"tip_mach": tip_mach, "thrust": T, "torque": Q, "power": P, "efficiency": eta, "figure_of_merit": fm,
               "thrust_coefficient": ct, "torque_coefficient": cq, "power_coefficient": cp,
               "energy_loss": E, "solidity": sol, "blade_loading": bl}
+    if not partials:
+        return values, None
 
     one = np.ones(np.shape(T))
     partials = {
@@ -207,33 +216,36 @@ class RotorPerformanceComp(om.ExplicitComponent):
         S = np.sum(inputs["chord"] * inputs["dr"], axis=1)
         return T, Q, S
 
-    def _performance(self, inputs):
+    def _performance(self, inputs, partials=True):
         T, Q, S = self._primitives(inputs)
         try:
             values, d = rotor_performance(T, Q, S, inputs["v_axial"], inputs["rpm"], inputs["radius"],
-                                          inputs["rho"], self.options["num_blades"], inputs["speed_of_sound"])
+                                          inputs["rho"], self.options["num_blades"], inputs["speed_of_sound"],
+                                          partials=partials)
         except om.AnalysisError as err:
             raise om.AnalysisError(f"{self.msginfo}: {err}") from err
         return values, d
 
     def compute(self, inputs, outputs):
-        values, _ = self._performance(inputs)
+        values, _ = self._performance(inputs, partials=False)
         for name, val in values.items():
             outputs[name] = val
 
     def compute_partials(self, inputs, partials):
         _, d = self._performance(inputs)
         dr = inputs["dr"]
-        # d(primitive)/d(dr) per station
-        dprim_ddr = {"T": inputs["dthrust_dr"], "Q": inputs["dtorque_dr"], "S": inputs["chord"]}
-        dist_of = {"T": "dthrust_dr", "Q": "dtorque_dr", "S": "chord"}
+        # Distribution behind each primitive, and d(primitive)/d(dr) per station.
+        dist_of = {"T": ("dthrust_dr", inputs["dthrust_dr"]), "Q": ("dtorque_dr", inputs["dtorque_dr"]),
+                   "S": ("chord", inputs["chord"])}
         for out, prims in _DEPENDS.items():
             # Outputs of per-design inputs only (tip_mach) have no sum over the stations.
-            ddr = np.zeros_like(dr) if any(p in dist_of for p in prims) else None
+            ddr = None
             for p in prims:
                 if p in dist_of:
-                    partials[out, dist_of[p]] = (d[out][p][:, None] * dr).ravel()
-                    ddr = ddr + d[out][p][:, None] * dprim_ddr[p]
+                    name, dprim_ddr = dist_of[p]
+                    coefficient = d[out][p][:, None]
+                    partials[out, name] = (coefficient * dr).ravel()
+                    ddr = coefficient * dprim_ddr if ddr is None else ddr + coefficient * dprim_ddr
                 else:
                     partials[out, p] = d[out][p]
             if ddr is not None:

@@ -229,3 +229,87 @@ def prandtl_loss_and_dphi(phi, r, radius, hub_radius, num_blades, loss_model="ti
     g = _exponent(half_b, r - hub_radius, hub_radius, abs_s)
     G, dG_dg = acos_factor(g)
     return F * G, dF_dphi * G + F * dG_dg * g * dlog
+
+
+class PrandtlLossJet(NamedTuple):
+    """``F``, its first and second ``phi`` derivatives and the mixed partials with the radii (complex-safe).
+
+    The exact ideal loading (:mod:`bild_mdo.bild.annulus_stationarity`) is a stationarity condition in
+    ``phi`` that contains ``dF/dphi``; its Newton slope needs ``d2F/dphi2`` and its partials need
+    ``d2F/(dphi dx)`` for ``x`` in (``r``, ``R``, ``r_hub``).  Every field carries the complex-step part of
+    its arguments (unlike :class:`PrandtlLoss`, whose partials are real).
+    """
+
+    F: np.ndarray
+    dF_dphi: np.ndarray
+    d2F_dphi2: np.ndarray
+    dF_dr: np.ndarray
+    d2F_dphi_dr: np.ndarray
+    dF_dradius: np.ndarray
+    d2F_dphi_dradius: np.ndarray
+    dF_dhub_radius: np.ndarray
+    d2F_dphi_dhub_radius: np.ndarray
+
+
+def acos_factor_jet(f):
+    """``2/pi acos(exp(-f))`` and its first two ``f`` derivatives (complex-safe, ``f`` clipped as there)."""
+    fr = _real(f)
+    inside = (fr > EXPONENT_MIN) & (fr < EXPONENT_MAX)
+    fc = np.where(fr <= EXPONENT_MIN, EXPONENT_MIN, np.where(fr >= EXPONENT_MAX, EXPONENT_MAX, f))
+    value = 2.0 / np.pi * np.arccos(np.exp(-fc))
+    gap = np.expm1(2.0 * fc)  # exp(2 f) - 1, accurate at small f
+    first = np.where(inside, 2.0 / np.pi / np.sqrt(gap), 0.0)
+    second = np.where(inside, -(gap + 1.0) * first / gap, 0.0)
+    return value, first, second
+
+
+def _factor_jet(phi, gap, base, num_blades):
+    """One Prandtl factor ``P(a/|sin phi|)``, ``a = B gap/(2 base)``: value, phi, phi-phi, a, phi-a derivatives.
+
+    With ``c = cot phi``: ``f' = -f c`` and ``f'' = f (1 + 2 c**2)`` (zero where ``|sin phi|`` is floored).
+    """
+    sign = np.sign(_real(np.sin(phi)))
+    floored = sign * _real(np.sin(phi)) < SIN_PHI_FLOOR
+    abs_s = np.where(floored, SIN_PHI_FLOOR, sign * np.sin(phi))
+    cot = np.where(floored, 0.0, np.cos(phi) / np.where(floored, 1.0, np.sin(phi)))
+    f = _exponent(0.5 * num_blades, gap, base, abs_s)
+    value, p1, p2 = acos_factor_jet(f)
+    f1 = -f * cot
+    f2 = np.where(floored, 0.0, f * (1.0 + 2.0 * cot * cot))
+    f_a = 1.0 / abs_s
+    f1_a = -cot / abs_s
+    return value, p1 * f1, p2 * f1 * f1 + p1 * f2, p1 * f_a, p2 * f_a * f1 + p1 * f1_a
+
+
+def prandtl_loss_jet(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
+    """:class:`PrandtlLossJet` of ``F(phi, r, R, r_hub)`` (the same ``F`` as :func:`prandtl_loss`).
+
+    Parameters are those of :func:`prandtl_loss`; real or complex arrays, broadcast.
+    """
+    if loss_model not in LOSS_MODELS:
+        raise ValueError(f"loss_model must be one of {LOSS_MODELS}, got {loss_model!r}")
+    phi, r, radius, hub_radius = np.broadcast_arrays(phi, r, radius, hub_radius)
+    dtype = np.result_type(phi, r, radius, hub_radius, float)
+    one, zero = np.ones(phi.shape, dtype=dtype), np.zeros(phi.shape, dtype=dtype)
+    if loss_model == "none":
+        return PrandtlLossJet(one, *([zero] * 8))
+    half_b = 0.5 * num_blades
+    # Tip: a = B (R - r)/(2 r), da/dr = -B R/(2 r**2), da/dR = B/(2 r).
+    t, t1, t2, t_a, t1_a = _factor_jet(phi, radius - r, r, num_blades)
+    ta_r, ta_R = -half_b * radius / (r * r), half_b / r
+    if loss_model == "tip":
+        return PrandtlLossJet(t, t1, t2, t_a * ta_r, t1_a * ta_r, t_a * ta_R, t1_a * ta_R, zero, zero)
+    if np.any(_real(hub_radius) <= 0.0):
+        raise ValueError("hub_radius must be positive for loss_model='tip_hub' "
+                         "(use loss_model='tip' for a rotor without hub)")
+    # Hub: a = B (r - r_hub)/(2 r_hub), da/dr = B/(2 r_hub), da/dr_hub = -B r/(2 r_hub**2).
+    h, h1, h2, h_a, h1_a = _factor_jet(phi, r - hub_radius, hub_radius, num_blades)
+    ha_r, ha_rh = half_b / hub_radius, -half_b * r / (hub_radius * hub_radius)
+
+    def mixed(t_x, t1_x, h_x, h1_x):
+        return t_x * h + t * h_x, t1_x * h + t1 * h_x + t_x * h1 + t * h1_x
+
+    d_r = mixed(t_a * ta_r, t1_a * ta_r, h_a * ha_r, h1_a * ha_r)
+    d_R = mixed(t_a * ta_R, t1_a * ta_R, zero, zero)
+    d_rh = mixed(zero, zero, h_a * ha_rh, h1_a * ha_rh)
+    return PrandtlLossJet(t * h, t1 * h + t * h1, t2 * h + 2.0 * t1 * h1 + t * h2, *d_r, *d_R, *d_rh)

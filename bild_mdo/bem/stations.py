@@ -150,13 +150,17 @@ class StationsComp(om.ExplicitComponent):
         if self._user is None:
             rh = inputs["hub_radius"][:, None]
             width = (R - rh) / nr
-            outputs["radii"] = rh + (np.arange(nr) + 0.5) * width
-            outputs["dr"] = width * np.ones(nr)
+            np.add(rh, (np.arange(nr) + 0.5) * width, out=outputs["radii"])
+            outputs["dr"] = width
+            # r_j = r_hub + (j + 1/2) width is >= r_hub at every station iff at the first (all fail where
+            # width < 0 or is NaN), so the check of station 0 finds the same first failure as the full check.
+            check = slice(None) if self.options["centred_annuli"] else slice(0, 1)
         else:
             rf, wf = self._user
             outputs["radii"] = rf * R
             outputs["dr"] = wf * R
-        self._check_outside_hub(np.real(outputs["radii"]), np.real(outputs["dr"]), np.real(R),
+            check = slice(None)
+        self._check_outside_hub(np.real(outputs["radii"][:, check]), np.real(outputs["dr"][:, check]), np.real(R),
                                 np.real(inputs["hub_radius"]))
 
     def _check_outside_hub(self, radii, dr, R, hub):

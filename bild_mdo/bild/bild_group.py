@@ -11,8 +11,11 @@ from bild_mdo.bem.performance import RotorPerformanceComp
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.stations import StationsComp
 from bild_mdo.bild.advance_ratio import AdvanceRatioComp
+from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS, ChordComp
 from bild_mdo.bild.eta2 import Eta2Comp
+from bild_mdo.bild.exact_eta2 import ExactEta2Comp
+from bild_mdo.bild.exact_ideal_loading import ExactIdealLoadingComp
 from bild_mdo.bild.feasibility import ON_INFEASIBLE, FeasibilityComp, FeasibilityLedger
 from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
@@ -56,12 +59,15 @@ def _check_correction(name, value):
         raise ValueError(f"{name} must be None (no correction) or a positive number k, got {value!r}")
 
 
-
-def _add_ideal_stations(group, size, loss, checked, along):
+def _add_ideal_stations(group, size, loss, checked, along, exact=False):
     """Add eta2 -> induced velocity -> inflow angle -> momentum loads, the per-station chain both section points use."""
-    group.add_subsystem("eta2", Eta2Comp(**size, **checked, **along),
-                        promotes_inputs=["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"],
-                        promotes_outputs=["eta2"])
+    eta2_in = ["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"]
+    if exact:
+        group.add_subsystem("eta2", ExactEta2Comp(**size, **loss, **checked, **along),
+                            promotes_inputs=eta2_in + ["radii", "radius", "hub_radius"], promotes_outputs=["eta2"])
+    else:
+        group.add_subsystem("eta2", Eta2Comp(**size, **checked, **along), promotes_inputs=eta2_in,
+                            promotes_outputs=["eta2"])
     group.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
                         promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
                         promotes_outputs=["u_axial", "u_theta"])
@@ -72,6 +78,20 @@ def _add_ideal_stations(group, size, loss, checked, along):
                         promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
                                          "hub_radius"],
                         promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
+
+
+def _add_ideal_loading(group, ideal_loading, node, loss, checked, reference_in):
+    """Add lambda (Eq. (22), or the exact ``(F e)'/(F t)'`` at ``phi_ref``); return whether it is the exact one."""
+    if ideal_loading == "exact":
+        group.add_subsystem("ideal_loading", ExactIdealLoadingComp(**node, **loss, **checked),
+                            promotes_inputs=["phi_ref"] + [name for name in reference_in if name != "ref_chord"],
+                            promotes_outputs=["ideal_loading_constant"])
+    else:
+        group.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
+                            promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
+                            promotes_outputs=["ideal_loading_constant"])
+    return ideal_loading == "exact"
+
 
 class BILDGroup(om.Group):
     """Ideal chord and twist of a rotor and its performance, by the BILD method.
@@ -91,7 +111,7 @@ class BILDGroup(om.Group):
         reference_airfoil           Re_ref, M_ref -> alpha*, C_l*, C_d*                step 1
         reference_station           BEM inflow angle at r_ref with c_ref (implicit)     step 2
         reference_induced_velocity  u_axial, u_theta at r_ref, Eq. (8)                  step 2
-        ideal_loading               lambda, Eq. (22)                                    step 3
+        ideal_loading               lambda, Eq. (22) (or exact, option ideal_loading)   step 3
         eta2                        quartic, Eq. (27) (implicit)                        step 4
         induced_velocity            u_axial, u_theta, Eqs. (26), (24)                   step 5
         inflow_angle                phi, W, twist, Eq. (30)                             step 7
@@ -185,6 +205,11 @@ class BILDGroup(om.Group):
         varies with the Reynolds number only.  Where two minima of
         ``cd/cl`` are nearly equal the lower is taken, so the design can jump
         (a kink in chord and twist as functions of the inputs) where they swap.
+    ideal_loading : str
+        ``'paper'`` (default): Eq. (22) and the quartic (27), which leave
+        ``dF/dphi`` out.  ``'exact'``: ``(F e)' = lambda (F t)'`` at every
+        station (:mod:`bild_mdo.bild.annulus_stationarity`), the optimum of the
+        BEM model for a fixed airfoil point (with ``'local'``: each station's own).
     thrust_target : bool
         False (default): ``ref_chord`` is an input.  True: ``thrust_target``
         is, and ``ref_chord`` is the output that gives ``thrust =
@@ -265,6 +290,9 @@ class BILDGroup(om.Group):
         self.options.declare("section_point", default="reference", check_valid=_check_section_point,
                              desc="'reference': every station at the max-L/D point of the reference Reynolds "
                                   "number (the paper); 'local': each station minimises cd/cl at its fixed load")
+        self.options.declare("ideal_loading", default="paper", values=IDEAL_LOADINGS,
+                             desc="'paper': lambda and eta2 of Eqs. (22), (27); 'exact': each annulus makes "
+                                  "E - lambda T stationary with the Prandtl factor F differentiated too")
 
     def setup(self):
         opts = self.options
@@ -312,11 +340,9 @@ class BILDGroup(om.Group):
             self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
                                promotes_inputs=["phi_ref"] + reference_in,
                                promotes_outputs=["u_axial_ref", "u_theta_ref"])
-            self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
-                               promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
-                               promotes_outputs=["ideal_loading_constant"])
+            exact = _add_ideal_loading(self, opts["ideal_loading"], node, loss, checked, reference_in)
             along = dict(varies_along_span=spanwise)
-            _add_ideal_stations(self, size, loss, checked, along)
+            _add_ideal_stations(self, size, loss, checked, along, exact)
             chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
             self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
                                                   **along),
@@ -392,12 +418,10 @@ class BILDGroup(om.Group):
         self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
                            promotes_inputs=["phi_ref"] + reference_in,
                            promotes_outputs=["u_axial_ref", "u_theta_ref"])
-        self.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
-                           promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
-                           promotes_outputs=["ideal_loading_constant"])
+        exact = _add_ideal_loading(self, opts["ideal_loading"], node, loss, checked, reference_in)
         along = dict(varies_along_span=True)
         loop = _coupled_loop(self.add_subsystem("section_point_loop", om.Group(), promotes=["*"]))
-        _add_ideal_stations(loop, size, loss, checked, along)
+        _add_ideal_stations(loop, size, loss, checked, along, exact)
         chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
         loop.add_subsystem("load_reynolds", LoadReynoldsComp(**size, **form),
                            promotes_inputs=chord_load + ["inflow_speed", "v_theta", "v_axial", "mu"],

@@ -109,53 +109,60 @@ class ChordComp(om.ExplicitComponent):
         self.declare_partials("lift_coefficient", "cl_star", rows=rows, cols=cols, val=1.0)
         self.declare_partials("drag_coefficient", "cd_star", rows=rows, cols=cols, val=1.0)
 
-    def _parts(self, inputs):
-        """Return load, force coefficient, its phi derivative, its cl and cd derivatives, denominator."""
-        b = self.options["num_blades"]
+    def _parts(self, inputs, derivatives=True):
+        """Return load, force coefficient, its phi, cl, cd derivatives (None without ``derivatives``), denominator.
+
+        The denominator is ``rho W**2 B / 2`` (times ``r`` in the torque form): ``chord = load / (coef denominator)``.
+        """
+        thrust_form = self.options["chord_form"] == "thrust"
         phi = inputs["phi"]
         cl = per_station(inputs["cl_star"])
         cd = per_station(inputs["cd_star"])
         sin, cos = np.sin(phi), np.cos(phi)
-        scale = inputs["rho"][:, None] * inputs["inflow_speed"] ** 2 * b
-        if self.options["chord_form"] == "thrust":
+        w = inputs["inflow_speed"]
+        scale = (0.5 * self.options["num_blades"] * inputs["rho"])[:, None] * (w * w)
+        if thrust_form:
             load = inputs["dthrust_dr"]
             coef = cl * cos - cd * sin
-            dcoef_dphi = -cl * sin - cd * cos
-            dcoef_dcl, dcoef_dcd = cos, -sin
         else:
             load = inputs["dtorque_dr"]
             coef = cl * sin + cd * cos
-            dcoef_dphi = cl * cos - cd * sin
-            dcoef_dcl, dcoef_dcd = sin, cos
             scale = scale * inputs["radii"]
-        bad = ~(np.real(coef) > 0.0)
-        if self.options["chord_form"] == "thrust":
+        positive = np.real(coef) > 0.0
+        bad = None if positive.all() else ~positive
+        if thrust_form:
             kind, rule = "C_x = C_l cos(phi) - C_d sin(phi)", "phi < atan(C_l/C_d)"
         else:
             kind, rule = "C_theta = C_l sin(phi) + C_d cos(phi)", "phi > -atan(C_d/C_l)"
-        details = station_details(bad, {"phi [rad]": phi, "C_l/C_d": cl / cd})
         report_infeasible(
-            self, "force_coefficient", np.any(bad, axis=1),
+            self, "force_coefficient", np.zeros(load.shape[0], dtype=bool) if bad is None else np.any(bad, axis=1),
             f"the blade-element force coefficient {kind} is not positive; the chord needs {rule} to be "
             "back-computed. In the BILD chain the station cannot carry the ideal load (Assumption 3): increase "
             "hub_radius_ratio, lower the advance ratio / V_x, or use an airfoil with a higher maximum L/D",
-            details)
-        if np.any(bad):  # placeholder values of infeasible nodes inside a BILDGroup
-            coef, dcoef_dphi = np.where(bad, 1.0, coef), np.where(bad, 0.0, dcoef_dphi)
-            dcoef_dcl, dcoef_dcd = np.where(bad, 0.0, dcoef_dcl), np.where(bad, 0.0, dcoef_dcd)
+            {} if bad is None else station_details(bad, {"phi [rad]": phi, "C_l/C_d": cl / cd}))
+        if bad is not None:  # placeholder values of infeasible nodes inside a BILDGroup
+            coef = np.where(bad, 1.0, coef)
+        if not derivatives:
+            return load, coef, None, None, None, scale
+        if thrust_form:
+            dcoef_dphi, dcoef_dcl, dcoef_dcd = -cl * sin - cd * cos, cos, -sin
+        else:
+            dcoef_dphi, dcoef_dcl, dcoef_dcd = cl * cos - cd * sin, sin, cos
+        if bad is not None:
+            dcoef_dphi, dcoef_dcl, dcoef_dcd = (np.where(bad, 0.0, d) for d in (dcoef_dphi, dcoef_dcl, dcoef_dcd))
         return load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale
 
     def compute(self, inputs, outputs):
-        load, coef, _, _, _, scale = self._parts(inputs)
-        outputs["chord_raw"] = 2.0 * load / (coef * scale)
-        outputs["lift_coefficient"] = np.broadcast_to(per_station(inputs["cl_star"]), load.shape)
-        outputs["drag_coefficient"] = np.broadcast_to(per_station(inputs["cd_star"]), load.shape)
+        load, coef, _, _, _, scale = self._parts(inputs, derivatives=False)
+        np.divide(load, coef * scale, out=outputs["chord_raw"])
+        outputs["lift_coefficient"] = per_station(inputs["cl_star"])
+        outputs["drag_coefficient"] = per_station(inputs["cd_star"])
 
     def compute_partials(self, inputs, partials):
         load, coef, dcoef_dphi, dcoef_dcl, dcoef_dcd, scale = self._parts(inputs)
-        chord = 2.0 * load / (coef * scale)
+        chord = load / (coef * scale)
         name = "dthrust_dr" if self.options["chord_form"] == "thrust" else "dtorque_dr"
-        partials["chord_raw", name] = (2.0 / (coef * scale)).ravel()
+        partials["chord_raw", name] = (1.0 / (coef * scale)).ravel()
         partials["chord_raw", "phi"] = (-chord * dcoef_dphi / coef).ravel()
         partials["chord_raw", "inflow_speed"] = (-2.0 * chord / inputs["inflow_speed"]).ravel()
         partials["chord_raw", "rho"] = (-chord / inputs["rho"][:, None]).ravel()

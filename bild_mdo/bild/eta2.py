@@ -15,10 +15,11 @@ from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 _MAX_ITERATIONS = 200
-#: Largest number of stations whose bracket is narrowed by a grid scan first (:func:`_scan_bracket`).
-_SCAN_MAX = 2048
-_SCAN_STEP = 0.01
-_SCAN_GRID = 0.5 + _SCAN_STEP * np.arange(1, round(0.5 / _SCAN_STEP))
+#: Moebius parameter ``a`` of the starting model (:func:`_start`): ``y -> infinity`` is ``t = 3/4``, the double root
+#: of the V_theta**4 part ``t**2 (3 - 4 t)**2 + 2 s**2 t (1 - 2 t)`` of P at s -> 0.  Paper sweep (Sec. 5.1, 300,000
+#: stations): two Newton passes leave 0.3 % to the safeguarded solve; stations off by > 1e-9: 19 % with a = 1.
+_START_SHIFT = 4.0 / 3.0
+_EPS = np.finfo(float).eps
 
 
 def _bracket_function(eta, v_axial, v_theta, lam, drag_to_lift, hover):
@@ -82,7 +83,7 @@ def _describe(index, names=None):
 
 
 def _domain_checks(v_axial, v_theta, lam, cl, cd):
-    """``(ok_mask, name, values, rule)`` of each input's domain check, elementwise."""
+    """``(ok_mask, name, values, rule)`` of each input's domain check, each in its input's own shape."""
     rules = (
         (v_axial, lambda x: x >= 0.0, "v_axial", "must be >= 0 (axial inflow; BILD assumes 0 <= V_x, Assumption 3)"),
         (v_theta, lambda x: x > 0.0, "v_theta", "must be > 0 (blade speed Omega*r at a station off the axis)"),
@@ -95,11 +96,17 @@ def _domain_checks(v_axial, v_theta, lam, cl, cd):
         return [(np.isfinite(values) & ok(values), name, values, rule) for values, ok, name, rule in rules]
 
 
-def _validate(v_axial, v_theta, lam, cl, cd, index_names):
-    for ok, name, values, rule in _domain_checks(v_axial, v_theta, lam, cl, cd):
+def _arrays(*values):
+    """The inputs as float arrays, not broadcast (a per-design value stays small), and their broadcast shape."""
+    arrays = [np.asarray(a, dtype=float) for a in values]
+    return arrays, np.broadcast_shapes(*(a.shape for a in arrays))
+
+
+def _validate(arrays, shape, index_names):
+    for ok, name, values, rule in _domain_checks(*arrays):
         if not np.all(ok):
-            index = np.argwhere(~ok)[0]
-            value = float(values[tuple(index)])
+            index = np.argwhere(~np.broadcast_to(ok, shape))[0]
+            value = float(np.broadcast_to(values, shape)[tuple(index)])
             raise ValueError(f"eta2 solve: {name} = {value!r} at {_describe(index, index_names)}: {rule}.")
 
 
@@ -109,113 +116,141 @@ def solve_eta2_flagged(v_axial, v_theta, lam, cl, cd):
     ``failed`` marks elements outside the domain or not converged; their
     eta2 is a placeholder in [0.5, 1] (the root for a benign hover station).
     """
-    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (v_axial, v_theta, lam, cl, cd)))
-    invalid = np.zeros(arrays[0].shape, dtype=bool)
+    arrays, shape = _arrays(v_axial, v_theta, lam, cl, cd)
+    invalid = np.zeros(shape, dtype=bool)
     for ok, _, _, _ in _domain_checks(*arrays):
-        invalid |= ~ok
-    benign = (0.0, 1.0, 1.0, 1.0, 0.01)  # hover, loaded: lam > V_theta C_d/(2 C_l)
+        if not np.all(ok):
+            invalid |= ~ok
     if invalid.any():
-        flat = [np.where(invalid, value, a).ravel() for value, a in zip(benign, arrays)]
-    else:
-        flat = [a.ravel() for a in arrays]
-    eta, converged = _solve_flat(flat[0], flat[1], flat[2], flat[4] / flat[3])
-    return eta.reshape(invalid.shape), invalid | ~converged.reshape(invalid.shape)
+        benign = (0.0, 1.0, 1.0, 1.0, 0.01)  # hover, loaded: lam > V_theta C_d/(2 C_l)
+        arrays = [np.where(invalid, value, a) for value, a in zip(benign, arrays)]
+    eta, converged = _solve(arrays[0], arrays[1], arrays[2], arrays[4] / arrays[3], shape)
+    return eta, (invalid | ~converged) if invalid.any() else ~converged
 
 
-def _solve_flat(v_axial, v_theta, lam, drag_to_lift):
-    """Bracket [0.5, 1] per element and solve with :func:`~bild_mdo.utils.newton.bracketed_newton`.
+def _taylor_coefficients(v_axial, v_theta, lam, drag_to_lift):
+    """``(q0, ..., q4)`` with ``P(1 - t) = lam**4 sum_k q_k t**k``: the quartic (Eq. (27)) about ``eta = 1``.
 
-    Returns ``(eta2, converged)`` on 1-D arrays.
+    Expanded with sympy from the ``N``, ``M``, ``b``, ``c`` of tools/derive_quartic.py (tests/bild/test_eta2.py
+    asserts the identity against :func:`~bild_mdo.bild.quartic.quartic`), with ``rho = V_x/lam`` per design and
+    ``z = V_theta/lam`` per station, each coefficient a polynomial in ``z``; ``q0 = P(1)/lam**4``.
     """
-    n = v_axial.size
+    rho, s = v_axial / lam, drag_to_lift
+    z = v_theta * (1.0 / lam)
+    r1 = rho + 1.0
+    s2, rs = s * s, rho * s
+    q0 = z * (z * (-2.0 * rho * s2) - rs * (3.0 * rho + 2.0)) - rho * rho * r1
+    q1 = z * (z * (z * (2.0 * s2 * z + s * (5.0 * rho - 2.0))
+                   + 2.0 * (rho * (rho * (s2 + 1.0) + 4.0 * s2 - 2.0) - 2.0))
+              + rs * (rho * (5.0 * rho + 18.0) + 12.0)) + 2.0 * rho * rho * r1 * (rho + 2.0)
+    q2 = z * (z * (z * ((9.0 - 4.0 * s2) * z + 4.0 * s * (1.0 - 4.0 * rho))
+                   + rho * (rho * (5.0 - 4.0 * s2) + 28.0 - 8.0 * s2) + 20.0)
+              - 8.0 * rs * r1 * (2.0 * rho + 3.0)) - 4.0 * (rho * r1) ** 2
+    q3 = z * (z * (z * (16.0 * rs - 24.0 * z) - 8.0 * r1 * (3.0 * rho + 4.0)) + 16.0 * rs * r1 * r1)
+    z2 = z * z
+    q4 = (16.0 * z2) * (z2 + r1 * r1)
+    return q0, q1, q2, q3, q4
+
+
+def _product_form(t, v_axial, v_theta, lam, drag_to_lift):
+    """``P(1 - t)`` as ``N (N - 2 b M) - c M**2`` (the form of :func:`_bracket_function`, written in ``t``)."""
+    eta, t_v_theta, s_v_theta = 1.0 - t, t * v_theta, drag_to_lift * v_theta
+    two_eta = eta - t
+    n_term = (v_theta * ((2.0 * drag_to_lift * v_axial) * eta + t_v_theta * (3.0 - 4.0 * t))
+              + (v_axial * (lam + v_axial)) * two_eta)
+    m_term = 2.0 * (s_v_theta + (lam + v_axial) * two_eta) - v_axial
+    c = eta * v_theta * (drag_to_lift * v_axial + t_v_theta)
+    return n_term * (n_term - (v_axial - s_v_theta) * m_term) - c * m_term * m_term
+
+
+def _solve(v_axial, v_theta, lam, drag_to_lift, shape):
+    """eta2 of every element: ``(eta2, converged)`` of the broadcast ``shape``.
+
+    The bracketed function (:func:`_bracket_function`) in ``t = 1 - eta`` is the polynomial ``Q`` of
+    :func:`_taylor_coefficients` (``P``, or ``C = P/t`` in hover, a cubic).  Every element starts from the root of
+    a quadratic model (:func:`_start`), takes two Newton steps on ``Q`` (a few flops each), then one on ``P`` in
+    its product form, the function :func:`_bracket_function` brackets.  An element is done where that last step
+    is inside the bracket and its predicted error ``|step|**2 |Q''/(2 Q')|`` is below an eighth of an ulp of
+    ``eta``; the others (0.3 % on the paper's sweep, more in heavy loading ``lam >> V_theta``) are solved by
+    :func:`~bild_mdo.utils.newton.bracketed_newton` on [0.5, 1] from that estimate (:func:`_solve_tail`), which
+    guarantees convergence with ``P(1/2) > 0 > P(1)``.
+    """
+    work = shape if shape else (1,)  # 0-d inputs are solved as one element
     hover = v_axial * lam == 0.0
-    lo = np.full(n, 0.5)
-    hi = np.ones(n)
-    # Exact values at the bracket ends (hand derivations, asserted in tools/derive_quartic.py:derive):
-    # P(1/2) > 0 (C(1/2) = 2 P(1/2) in hover), P(1) away from hover, C(1) in it.
-    sv = drag_to_lift * v_theta
-    f_lo = 0.25 * v_theta * (v_theta**2 + v_axial**2) * (v_theta + 2.0 * drag_to_lift * v_axial)
-    f_lo = np.where(hover, 2.0 * f_lo, f_lo)
-    f_hi = np.where(hover, 2.0 * v_theta**2 * (lam + sv) * (sv - 2.0 * lam),
-                    -lam * v_axial * (v_axial + 2.0 * sv) * (lam + v_axial + sv))
-    unloaded = hover & ~(f_hi < 0.0)
-    # P(0.5) > 0 analytically; a station without a bracket is reported, never guessed.
-    active = np.flatnonzero(~unloaded & (f_lo > 0.0))
-    eta = np.ones(n)
-    converged = unloaded.copy()
-    if active.size == 0:
-        return eta, converged
-    lo, hi, f_lo, f_hi = lo[active], hi[active], f_lo[active], f_hi[active]
-    slopes = None
-    if active.size <= _SCAN_MAX:
-        lo, hi, f_lo, f_hi, slopes = _scan_bracket(active, lo, hi, f_lo, f_hi, v_axial, v_theta, lam, drag_to_lift,
-                                                   hover)
-    x0 = np.clip(false_position(lo, hi, f_lo, f_hi), lo + 2e-3 * (hi - lo), hi - 1e-12)
-    if slopes is not None:
-        x0 = _hermite_root(lo, hi, f_lo, f_hi, *slopes, x0)
-    if active.size > _SCAN_MAX:
-        # The Newton point from eta = 1 (lightly loaded stations have their root close to 1) where it
-        # lies in the bracket: a pass less on average than the false-position point.
-        at = active
-        f_1, df_1, _ = _bracket_function(hi, v_axial[at], v_theta[at], lam[at], drag_to_lift[at], hover[at])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            newton = 1.0 - f_1 / df_1
-        x0 = np.where((newton > 0.5) & (newton < 1.0), newton, x0)
+    q = list(_taylor_coefficients(v_axial, v_theta, lam, drag_to_lift))
+    at = None
+    if np.any(hover):
+        # In hover P(1) = 0: the bracketed function is the cubic C = P/t (Eq. (35)), whose coefficients are P's
+        # shifted by one.  A station with C(t = 0) >= 0 (lam <= V_theta s/2) is unloaded: eta2 = 1.
+        at = np.nonzero(np.broadcast_to(hover, work))
+        q = [a if a.shape == work else np.array(np.broadcast_to(a, work)) for a in q]
+        for k in range(4):
+            q[k][at] = q[k + 1][at]
+        q[4][at] = 0.0
+        pick = [np.broadcast_to(a, work)[at] for a in (drag_to_lift, v_theta, lam)]
+        unloaded = at, ~(pick[0] * pick[1] < 2.0 * pick[2])
+    q0, q1, q2, q3, q4 = q
+    with np.errstate(all="ignore"):
+        t = _start(q0, q1, q2)
+        if t.shape != work:
+            t = np.array(np.broadcast_to(t, work))
+        d1, d2, d3 = 2.0 * q2, 3.0 * q3, 4.0 * q4
+        for _ in range(2):
+            t -= ((((q4 * t + q3) * t + q2) * t + q1) * t + q0) / (((d3 * t + d2) * t + d1) * t + q1)
+        top = d3 * t
+        slope = ((top + d2) * t + d1) * t + q1
+        curvature = (1.5 * top + d2) * t + q2  # Q''/2
+        f = _product_form(t, v_axial, v_theta, lam, drag_to_lift)
+        if at is not None:
+            f[at] /= t[at]
+        step = f / (slope * (lam * lam) ** 2)  # P = lam**4 Q
+        t -= step
+        done = (np.abs(step * step * curvature) <= (0.125 * _EPS) * slope) & (np.abs(t - 0.25) < 0.25)
+    eta = 1.0 - t
+    if at is not None:
+        eta[at] = np.where(unloaded[1], 1.0, eta[at])
+        done[at] |= unloaded[1]
+    if not done.all():
+        eta, done = _solve_tail(eta, done, v_axial, v_theta, lam, drag_to_lift, work)
+    return eta.reshape(shape), done.reshape(shape)
+
+
+def _start(q0, q1, q2):
+    """Root in ``t`` of the quadratic Taylor model at ``y = 0`` of ``(1 + a y)**4 Q(t)``, ``t = y/(1 + a y)``.
+
+    ``a`` is :data:`_START_SHIFT`; with ``a = 0`` this is the quadratic model of ``Q`` at ``eta = 1``,
+    whose root is poor for heavily loaded stations.  Its discriminant reduces to
+    ``q1**2 - 4 q0 (q2 + a (q1 + 2 a q0))``.
+    """
+    a = _START_SHIFT
+    w = q1 + (2.0 * a) * q0
+    root = np.sqrt(np.maximum(q1 * q1 - (4.0 * q0) * (q2 + a * w), 0.0))
+    return (-2.0 * q0) / (w + root)
+
+
+def _solve_tail(eta, done, v_axial, v_theta, lam, drag_to_lift, shape):
+    """Bracketed Newton (:func:`_bracket_function` on [0.5, 1]) for the elements not ``done``, from ``eta``."""
+    at = np.flatnonzero(~done)
+    v_x, v_t, lam, s = (np.broadcast_to(a, shape).ravel()[at] for a in (v_axial, v_theta, lam, drag_to_lift))
+    hover = v_x * lam == 0.0
+    # Bracket-end values (hand derivations, asserted in tools/derive_quartic.py:derive): P(1/2) > 0
+    # (C(1/2) = 2 P(1/2) in hover), P(1) away from hover, C(1) in it.
+    sv = s * v_t
+    f_lo = np.where(hover, 0.5, 0.25) * v_t * (v_t**2 + v_x**2) * (v_t + 2.0 * s * v_x)
+    f_hi = np.where(hover, 2.0 * v_t**2 * (lam + sv) * (sv - 2.0 * lam),
+                    -lam * v_x * (v_x + 2.0 * sv) * (lam + v_x + sv))
+    x0 = eta.ravel()[at]
+    x0 = np.where((x0 > 0.5) & (x0 < 1.0), x0, np.clip(false_position(0.5, 1.0, f_lo, f_hi), 0.501, 1.0 - 1e-12))
 
     def function(x, idx):
-        at = active[idx]
-        return _bracket_function(x, v_axial[at], v_theta[at], lam[at], drag_to_lift[at], hover[at])
+        return _bracket_function(x, v_x[idx], v_t[idx], lam[idx], s[idx], hover[idx])
 
-    result = bracketed_newton(function, lo, hi, f_lo, x0, max_iter=_MAX_ITERATIONS, quadratic_stop=True)
-    eta[active] = result.x
-    converged[active] = result.converged
-    return eta, converged
-
-
-def _scan_bracket(active, lo, hi, f_lo, f_hi, v_axial, v_theta, lam, drag_to_lift, hover):
-    """Narrow each bracket [0.5, 1] to the grid interval of width :data:`_SCAN_STEP` with the sign change.
-
-    One vectorised evaluation on the grid replaces the first Newton passes: worth it for a few
-    designs (the passes cost Python overhead, not arithmetic), not for large batches.  The
-    bracketed function has exactly one root in (0.5, 1), so its first sign change is the root.
-    """
-    grid = _SCAN_GRID
-    at = np.repeat(active, grid.size)
-    values, derivatives, _ = _bracket_function(np.tile(grid, active.size), v_axial[at], v_theta[at], lam[at],
-                                               drag_to_lift[at], hover[at])
-    values = values.reshape(active.size, grid.size)
-    values = np.concatenate([f_lo[:, None], values, f_hi[:, None]], axis=1)
-    points = np.concatenate([[0.5], grid, [1.0]])
-    # First grid point where the function is no longer positive (f(1) <= 0 for every active station).
-    first = np.argmax(values <= 0.0, axis=1)
-    first = np.maximum(first, 1)
-    rows = np.arange(active.size)
-    # The slopes at the grid points (unknown at the bracket ends 0.5 and 1: NaN).
-    slopes = np.full((active.size, grid.size + 2), np.nan)
-    slopes[:, 1:-1] = derivatives.reshape(active.size, grid.size)
-    return (points[first - 1], points[first], values[rows, first - 1], values[rows, first],
-            (slopes[rows, first - 1], slopes[rows, first]))
-
-
-def _hermite_root(lo, hi, f_lo, f_hi, d_lo, d_hi, x0):
-    """Root of the cubic Hermite interpolant of ``f`` on each narrowed bracket, by two Newton steps from ``x0``.
-
-    On a bracket of width 0.01 it is within ~1e-9 of the root, so the Newton solve needs one pass
-    less than from the false-position point; where it is not a finite point inside the bracket (or a
-    slope is unknown), ``x0`` is kept.
-    """
-    width = hi - lo
-    m_lo, m_hi = d_lo * width, d_hi * width
-    t = (x0 - lo) / width
-    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        for _ in range(2):
-            u = 1.0 - t
-            value = ((1.0 + 2.0 * t) * u * u * f_lo + t * u * u * m_lo + t * t * (3.0 - 2.0 * t) * f_hi
-                     - t * t * u * m_hi)
-            slope = 6.0 * t * u * (f_hi - f_lo) + u * (1.0 - 3.0 * t) * m_lo + t * (3.0 * t - 2.0) * m_hi
-            t = t - value / slope
-        x = lo + t * width
-    return np.where(np.isfinite(x) & (x > lo) & (x < hi), x, x0)
+    result = bracketed_newton(function, np.full(at.size, 0.5), np.ones(at.size), f_lo, x0, max_iter=_MAX_ITERATIONS,
+                              quadratic_stop=True)
+    eta, done = eta.ravel(), done.ravel()
+    eta[at] = result.x
+    done[at] = result.converged & (f_lo > 0.0)  # P(0.5) > 0 analytically: without a bracket, reported
+    return eta.reshape(shape), done.reshape(shape)
 
 
 def solve_eta2(v_axial, v_theta, lam, cl, cd, index_names=None):
@@ -224,10 +259,10 @@ def solve_eta2(v_axial, v_theta, lam, cl, cd, index_names=None):
     Each element is the unique root in (0.5, 1) of the quartic ``P`` (and of
     its physical factor ``h``: ``P = h k`` with ``k > 0`` on [0.5, 1]), so it
     satisfies Eq. (22) with ``u_axial`` from Eq. (26) and ``u_theta`` from
-    Eq. (24).  The solve is the package's vectorised safeguarded Newton
-    iteration (:func:`bild_mdo.utils.newton.bracketed_newton`) on the bracket
-    [0.5, 1], converged to round-off of the bracketed function's terms; see
-    :func:`_bracket_function` for the function it brackets.  The root is unique and the other real root of ``h`` near
+    Eq. (24).  Newton steps from a close explicit start, finished by the
+    package's safeguarded Newton iteration on the bracket [0.5, 1] wherever
+    they do not converge, give the root to round-off of the bracketed
+    function (:func:`_solve`, :func:`_bracket_function`).  The root is unique and the other real root of ``h`` near
     hover lies above 1, so it is never returned, however close it is.
 
     Hover (``V_x == 0``): the station carries load only if
@@ -260,17 +295,16 @@ def solve_eta2(v_axial, v_theta, lam, cl, cd, index_names=None):
         If an input is outside the valid domain or (not expected in the
         valid domain) the solve fails; the message names the element.
     """
-    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (v_axial, v_theta, lam, cl, cd)))
-    _validate(*arrays, index_names)
-    flat = [a.ravel() for a in arrays]
-    eta, converged = _solve_flat(flat[0], flat[1], flat[2], flat[4] / flat[3])
+    arrays, shape = _arrays(v_axial, v_theta, lam, cl, cd)
+    _validate(arrays, shape, index_names)
+    eta, converged = _solve(arrays[0], arrays[1], arrays[2], arrays[4] / arrays[3], shape)
     if not np.all(converged):
-        index = np.unravel_index(np.flatnonzero(~converged)[0], arrays[0].shape)
-        at = ", ".join(f"{label}={float(a[index])!r}" for label, a in zip(("V_x", "V_theta", "lambda", "C_l", "C_d"),
-                                                                           arrays))
+        index = np.unravel_index(np.flatnonzero(~converged)[0], shape)
+        at = ", ".join(f"{label}={float(np.broadcast_to(a, shape)[index])!r}"
+                       for label, a in zip(("V_x", "V_theta", "lambda", "C_l", "C_d"), arrays))
         raise ValueError(f"eta2 solve did not converge at {_describe(index, index_names)} ({at}); "
                          "please report this case.")
-    return eta.reshape(arrays[0].shape)
+    return eta
 
 
 class Eta2Comp(om.ImplicitComponent):
@@ -371,11 +405,11 @@ class Eta2Comp(om.ImplicitComponent):
                 raise om.AnalysisError(f"{self.msginfo}: {err}") from err
         else:
             eta, failed = solve_eta2_flagged(*args)
+            bad = failed.any()  # the details and the mask per node only where some station failed
             details = station_details(failed, {"V_x [m/s]": args[0], "V_theta [m/s]": args[1],
-                                                     "lambda [m/s]": args[2]})
-            report_infeasible(self, "solve", np.any(failed, axis=1),
-                              "eta2 solve: an input is outside its domain or the solve did not converge",
-                              details)
+                                               "lambda [m/s]": args[2]}) if bad else {}
+            report_infeasible(self, "solve", np.any(failed, axis=1) if bad else np.zeros(len(eta), dtype=bool),
+                              "eta2 solve: an input is outside its domain or the solve did not converge", details)
         if self.under_complex_step:
             residual = quartic(eta, *self._arguments(inputs))
             slope = quartic_partials(eta, *self._arguments(real), wrt=("eta",))["eta"]

@@ -97,25 +97,38 @@ class InducedVelocityComp(om.ExplicitComponent):
         c = eta2 * v_t * (v_t * (1.0 - eta2) + v_x * s)
         return eta2, v_t, v_x, s, b, c
 
-    def _check_positive_thrust(self, eta2, v_t, v_x, s):
+    def _check_positive_thrust(self, eta2, v_t, v_x, s, eta2_v_t=None):
         """Report the nodes where ``V_x < eta2 V_theta / s`` (Assumption 3, ``u_axial > V_x``) fails somewhere."""
         eta2, v_t, v_x, s = (np.real(a) for a in (eta2, v_t, v_x, s))
-        limit = eta2 * v_t / s
-        bad = ~(v_x < limit)
-        details = station_details(bad, {"V_theta [m/s]": v_t, "eta2": eta2, "V_x [m/s]": v_x,
-                                              "C_l*/C_d*": 1.0 / s, "limit eta2 V_theta C_l*/C_d* [m/s]": limit})
+        limit = (eta2 * v_t if eta2_v_t is None else np.real(eta2_v_t)) / s
+        holds = v_x < limit
+        bad = None if holds.all() else ~holds
+        details = {} if bad is None else station_details(
+            bad, {"V_theta [m/s]": v_t, "eta2": eta2, "V_x [m/s]": v_x, "C_l*/C_d*": 1.0 / s,
+                  "limit eta2 V_theta C_l*/C_d* [m/s]": limit})
         report_infeasible(
-            self, "positive_thrust", np.any(bad, axis=1),
+            self, "positive_thrust", np.zeros(holds.shape[0], dtype=bool) if bad is None else np.any(bad, axis=1),
             "Assumption 3 (u_axial > V_x, positive local thrust) fails: a station needs "
             "V_x < eta2 V_theta C_l*/C_d*, else the blade element windmills. Increase hub_radius_ratio "
             "(inboard stations have the lowest V_theta), lower the advance ratio / V_x, or use an airfoil "
             "with a higher maximum L/D", details)
 
     def compute(self, inputs, outputs):
-        eta2, v_t, v_x, s, b, c = self._terms(inputs)
-        self._check_positive_thrust(eta2, v_t, v_x, s)
-        outputs["u_axial"] = axial_velocity_root(b, c)[0]  # Eq. (26)
-        outputs["u_theta"] = 2.0 * v_t * (1.0 - eta2)
+        eta2, v_t = inputs["eta2"], inputs["v_theta"]
+        v_x = inputs["v_axial"][:, None]
+        s = per_station(inputs["cd_star"] / inputs["cl_star"])
+        swirl = v_t * (1.0 - eta2)  # u_theta/2, Eq. (24)
+        eta2_v_t = eta2 * v_t
+        self._check_positive_thrust(eta2, v_t, v_x, s, eta2_v_t)
+        b = 0.5 * v_x - (0.5 * s) * v_t  # = (V_x - V_theta s)/2 exactly
+        c = eta2_v_t * (swirl + v_x * s)
+        # Eq. (26) without cancellation (as axial_velocity_root): u+ = c/(r - b) for b < 0, b + r for b >= 0.
+        r = np.sqrt(b * b + c)
+        u_axial = outputs["u_axial"]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            np.divide(c, r - b, out=u_axial)
+        np.add(b, r, out=u_axial, where=np.real(b) >= 0.0)
+        np.multiply(swirl, 2.0, out=outputs["u_theta"])
 
     def compute_partials(self, inputs, partials):
         eta2, v_t, v_x, s, b, c = self._terms(inputs)

@@ -77,16 +77,18 @@ class InflowAngleComp(om.ExplicitComponent):
     def compute(self, inputs, outputs):
         u_axial = inputs["u_axial"]
         v_t = inputs["v_theta"] - 0.5 * inputs["u_theta"]
-        bad = ~(np.real(v_t) > 0.0)
-        details = station_details(bad, {"u_theta [m/s]": inputs["u_theta"], "V_theta [m/s]": inputs["v_theta"]})
-        report_infeasible(self, "swirl", np.any(bad, axis=1), "u_theta >= 2 V_theta (eta2 <= 0): the inflow angle "
-                          "is undefined", details)
-        v_t = np.where(bad, inputs["v_theta"], v_t)  # placeholder of infeasible nodes inside a BILDGroup
+        positive = np.real(v_t) > 0.0
+        bad = None if positive.all() else ~positive
+        report_infeasible(self, "swirl", np.zeros(v_t.shape[0], dtype=bool) if bad is None else np.any(bad, axis=1),
+                          "u_theta >= 2 V_theta (eta2 <= 0): the inflow angle is undefined",
+                          {} if bad is None else station_details(bad, {"u_theta [m/s]": inputs["u_theta"],
+                                                                       "V_theta [m/s]": inputs["v_theta"]}))
+        if bad is not None:
+            v_t = np.where(bad, inputs["v_theta"], v_t)  # placeholder of infeasible nodes inside a BILDGroup
         # V_t = eta2 V_theta > 0 (Eq. (23)), so the plain arctan is the right branch and complex-step safe.
-        phi = np.arctan(u_axial / v_t)
-        outputs["phi"] = phi
-        outputs["inflow_speed"] = np.sqrt(u_axial ** 2 + v_t ** 2)
-        outputs["twist"] = phi + per_station(inputs["alpha_star"])
+        phi = np.arctan(u_axial / v_t, out=outputs["phi"])
+        np.sqrt(u_axial * u_axial + v_t * v_t, out=outputs["inflow_speed"])
+        np.add(phi, per_station(inputs["alpha_star"]), out=outputs["twist"])
 
     def compute_partials(self, inputs, partials):
         u_axial = inputs["u_axial"]

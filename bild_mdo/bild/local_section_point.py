@@ -52,12 +52,10 @@ and ``Q``::
     J = [[G_alpha, G_Re], [h_alpha, h_Re]],   det J = B dG/dalpha > 0 at a minimum,
     d(alpha, Re)/dp = -J**-1 (G_p, h_p),      h_phi = Re C_phi, h_Q = -1, G_Q = 0.
 
-``G_Re`` needs the polar's second Reynolds derivatives ``cl_ReRe, cd_ReRe``;
-the polar interface provides them only as optional fields ``d2cl_dre2,
-d2cd_dre2`` of ``second_derivatives``.  Where they are missing they are taken
-from the polar's analytic ``dcl_dre`` by a central difference in ``ln Re``
-(:func:`_reynolds_curvature`), exact to round-off for the surrogate's cubic
-patches in ``log Re`` within a cell.
+``G_Re`` needs the polar's second Reynolds derivatives ``cl_ReRe, cd_ReRe``:
+the exact fields ``d2cl_dre2, d2cd_dre2`` of its ``second_derivatives``
+(:class:`~bild_mdo.airfoil.polar.PolarSecondDerivatives`), like every other
+term of ``J``.
 """
 from __future__ import annotations
 
@@ -71,8 +69,6 @@ from bild_mdo.utils.newton import bracketed_newton
 SECTION_POINTS = ("reference", "local")
 #: Step of the bracket scan (rad); the minima are then solved to round-off.
 _SCAN_STEP = np.radians(0.5)
-#: Half step in ln Re of the central difference for the second Reynolds derivatives.
-_LN_RE_STEP = 1e-4
 _INNER_ITERATIONS = 40
 #: Angles whose lift coefficient is below this on the path are left out of the scan: their cd/cl is far
 #: from any minimum, and near zero lift their Reynolds number Q / C would lie far outside any polar's data.
@@ -94,23 +90,6 @@ def force_factors(phi, chord_form):
     if chord_form == "thrust":
         return np.cos(phi), -np.sin(phi)
     return np.sin(phi), np.cos(phi)
-
-
-def _reynolds_curvature(polar, alpha, reynolds, second):
-    """``(cl_ReRe, cd_ReRe)``: the polar's own fields if it has them, else from its analytic ``d/dRe``."""
-    if hasattr(second, "d2cl_dre2"):
-        return second.d2cl_dre2, second.d2cd_dre2
-    up = polar.evaluate(alpha, reynolds * np.exp(_LN_RE_STEP))
-    down = polar.evaluate(alpha, reynolds * np.exp(-_LN_RE_STEP))
-    here = polar.evaluate(alpha, reynolds)
-    out = []
-    for name in ("dcl_dre", "dcd_dre"):
-        # d/dlnRe of Re f_Re is Re f_Re + Re**2 f_ReRe.
-        g_up = reynolds * np.exp(_LN_RE_STEP) * getattr(up, name)
-        g_down = reynolds * np.exp(-_LN_RE_STEP) * getattr(down, name)
-        slope = (g_up - g_down) / (2.0 * _LN_RE_STEP)
-        out.append((slope - reynolds * getattr(here, name)) / reynolds ** 2)
-    return tuple(out)
 
 
 class _Terms(NamedTuple):
@@ -148,8 +127,8 @@ def _first_terms(polar, alpha, reynolds, p, q):
 def _gradient(polar, alpha, reynolds, p, q, t):
     """``(G_alpha, G_Re, G_phi)`` at ``(alpha, Re)`` with the first-order terms ``t``."""
     s = polar.second_derivatives(alpha, reynolds)
-    cl_rr, cd_rr = _reynolds_curvature(polar, alpha, reynolds, s)
     cl_aa, cl_ar, cd_aa, cd_ar = s.d2cl_dalpha2, s.d2cl_dalpha_dre, s.d2cd_dalpha2, s.d2cd_dalpha_dre
+    cl_rr, cd_rr = s.d2cl_dre2, s.d2cd_dre2
     re = reynolds
     a = t.cd_a * t.cl - t.cd * t.cl_a
     d = t.cd_re * t.cl - t.cd * t.cl_re

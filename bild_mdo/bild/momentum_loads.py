@@ -3,11 +3,38 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.blade_element import declare_section_options
-from bild_mdo.bem.prandtl import loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
+from bild_mdo.bem.prandtl import (EXPONENT_MAX, EXPONENT_MIN, SIN_PHI_FLOOR, loss_inputs, loss_partials,
+                                  prandtl_loss)
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
+
+
+def _loss_factor(phi, r, radius, hub_radius, num_blades, loss_model, out):
+    """Prandtl's ``F`` alone, real, written into ``out``: :func:`~bild_mdo.bem.prandtl.prandtl_loss`'s value.
+
+    The same floor of ``|sin phi|`` and clip of the exponents, without the partials (``compute`` needs
+    none), the sign of each exponent folded into its clip.
+    """
+    if loss_model == "none":
+        out[...] = 1.0
+        return out
+    if loss_model == "tip_hub" and np.any(hub_radius <= 0.0):
+        prandtl_loss(phi, r, radius, hub_radius, num_blades, loss_model)  # raises its ValueError
+    abs_sin = np.maximum(np.abs(np.sin(phi)), SIN_PHI_FLOOR)
+    half_b = 0.5 * num_blades
+    clip = (-EXPONENT_MAX, -EXPONENT_MIN)
+    with np.errstate(over="ignore", divide="ignore"):
+        tip = np.exp(np.clip((-half_b) * (radius - r) / (r * abs_sin), *clip))
+        np.arccos(tip, out=out)
+        if loss_model == "tip_hub":
+            hub = np.exp(np.clip((-half_b) * (r - hub_radius) / (hub_radius * abs_sin), *clip))
+            out *= np.arccos(hub, out=hub)
+            out *= (2.0 / np.pi) ** 2
+        else:
+            out *= 2.0 / np.pi
+    return out
 
 
 class MomentumLoadsComp(om.ExplicitComponent):
@@ -125,34 +152,35 @@ class MomentumLoadsComp(om.ExplicitComponent):
         """Nodes with no torque at any station, reported to the group's ledger (none for the component alone)."""
         if self.options["feasibility"] is None:
             return np.zeros(torque.shape[0], dtype=bool)
-        unloaded = ~np.any(np.real(torque) > 0.0, axis=1)
+        loaded = np.real(torque) > 0.0
+        unloaded = ~np.any(loaded, axis=1)
+        details = {"loaded stations": np.sum(loaded, axis=1)} if unloaded.any() else {}
         report_infeasible(self, "unloaded", unloaded,
                           "no station can be loaded (hover: lambda <= V_theta C_d*/(2 C_l*) at every station), "
                           "so the rotor has zero torque: increase ref_chord or rpm, or use an airfoil with a "
-                          "higher maximum L/D", {"loaded stations": np.sum(np.real(torque) > 0.0, axis=1)})
+                          "higher maximum L/D", details)
         return unloaded
 
     def compute(self, inputs, outputs):
+        v_x = inputs["v_axial"][:, None]
+        omega = RPM_TO_RAD_PER_S * inputs["rpm"][:, None]
+        thrust, torque = outputs["dthrust_dr"], outputs["dtorque_dr"]
         if np.iscomplexobj(inputs["phi"]):
-            loss, _, _, _, v_x, _, omega, t_no_f, q_no_f = self._terms(inputs)
-            loss = loss.F
+            loss, _, _, _, _, _, _, t_no_f, q_no_f = self._terms(inputs)
+            outputs["loss_factor"] = loss.F
+            thrust[...], torque[...] = t_no_f * loss.F, q_no_f * loss.F
         else:
-            # Only F: its partials are needed in compute_partials alone.
-            u_axial, u_t, r = inputs["u_axial"], inputs["u_theta"], inputs["radii"]
-            v_x = inputs["v_axial"][:, None]
-            rho = inputs["rho"][:, None]
-            omega = RPM_TO_RAD_PER_S * inputs["rpm"][:, None]
-            t_no_f = 4.0 * np.pi * rho * u_axial * (u_axial - v_x) * r
-            q_no_f = 2.0 * np.pi * rho * u_axial * u_t * r ** 2
-            loss, _ = prandtl_loss_and_dphi(inputs["phi"], r, inputs["radius"][:, None], inputs["hub_radius"][:, None],
-                                            self.options["num_blades"], self.options["loss_model"])
-        thrust, torque = t_no_f * loss, q_no_f * loss
-        unloaded = self._unloaded(torque)[:, None]
-        thrust, torque = np.where(unloaded, 1.0, thrust), np.where(unloaded, 1.0, torque)
-        outputs["loss_factor"] = loss
-        outputs["dthrust_dr"] = thrust
-        outputs["dtorque_dr"] = torque
-        outputs["denergy_loss_dr"] = omega * torque - v_x * thrust
+            # Real: F alone (its partials are needed in compute_partials only); w = 2 pi rho u_axial r F.
+            u_axial, r = inputs["u_axial"], inputs["radii"]
+            loss = _loss_factor(inputs["phi"], r, inputs["radius"][:, None], inputs["hub_radius"][:, None],
+                                self.options["num_blades"], self.options["loss_model"], outputs["loss_factor"])
+            w = (2.0 * np.pi * inputs["rho"][:, None]) * u_axial * r * loss
+            np.multiply(u_axial - v_x, 2.0 * w, out=thrust)  # Eq. (1)
+            np.multiply(w * inputs["u_theta"], r, out=torque)  # Eq. (2)
+        unloaded = self._unloaded(torque)
+        if unloaded.any():
+            thrust[unloaded], torque[unloaded] = 1.0, 1.0
+        np.subtract(omega * torque, v_x * thrust, out=outputs["denergy_loss_dr"])
 
     def compute_partials(self, inputs, partials):
         loss, u_axial, u_t, r, v_x, rho, omega, t_no_f, q_no_f = self._terms(inputs)

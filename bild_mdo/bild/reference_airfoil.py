@@ -38,7 +38,8 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
     :func:`~bild_mdo.airfoil.max_lift_to_drag_table.max_lift_to_drag_tabulated`
     (the same Newton solve, warm-started from a table built once per polar),
     and ``compute_partials`` reuses the point ``compute`` found at the same
-    inputs.
+    inputs (its Reynolds derivatives, evaluated there on first use, are
+    the only polar call ``compute`` leaves to it).
 
     A polar that varies along the span
     (:class:`~bild_mdo.airfoil.spanwise.SpanwisePolar`, ``polar.varies_along_span``)
@@ -173,7 +174,8 @@ class ReferenceAirfoilComp(om.ExplicitComponent):
             if kwargs:
                 point = self._polar.max_lift_to_drag(reynolds, **kwargs)
             else:
-                point = max_lift_to_drag_tabulated(self._polar, reynolds)
+                # Derivatives on first use (compute_partials): a run without them skips one polar call.
+                point = max_lift_to_drag_tabulated(self._polar, reynolds, derivatives=False)
         except ValueError as err:
             raise om.AnalysisError(f"{self.msginfo}: no maximum-L/D point at the reference "
                                    f"Reynolds number: {err}") from err

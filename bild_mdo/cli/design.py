@@ -7,6 +7,7 @@ import numpy as np
 
 from bild_mdo import validation
 from bild_mdo.bem.prandtl import LOSS_MODELS
+from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
@@ -58,6 +59,10 @@ def add_design_arguments(parser):
     parser.add_argument("--section-point", choices=SECTION_POINTS, default="reference",
                         help="'reference': every station at the max-L/D point of the reference Reynolds number "
                              "(the paper); 'local': each station minimises cd/cl at its own load and Reynolds number")
+    parser.add_argument("--ideal-loading", choices=IDEAL_LOADINGS, default="paper",
+                        help="'paper': lambda and eta2 of Eqs. (22), (27) (default); 'exact': every annulus makes "
+                             "E - lambda T stationary with the Prandtl loss factor differentiated too (the BEM "
+                             "optimum for the airfoil point)")
     out = parser.add_argument_group("output files")
     out.add_argument("--csv", metavar="FILE", help="write the geometry table r [m], chord [m], twist [deg] "
                      "(a batch writes FILE_<i>.csv per design)")
@@ -127,7 +132,8 @@ def run_design(args, out):
     polar = airfoil_polar("--airfoil", args.airfoil)
     result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=polar,
                           num_radial=num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
-                          root_chord_correction=args.root_chord_correction, section_point=args.section_point)
+                          root_chord_correction=args.root_chord_correction, section_point=args.section_point,
+                          ideal_loading=args.ideal_loading)
     problem = _zero_chord_message(result)
     if problem and (files["--csv"] or files["--json"] or files["--qprop"]):
         raise ValueError(f"{problem} (no geometry file written)")

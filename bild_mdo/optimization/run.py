@@ -191,6 +191,10 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
         clears stalls such as SLSQP's "Positive directional derivative for
         linesearch".  ``iterations``, ``model_evaluations`` and ``wall_time``
         add up over the attempts; ``status`` names the earlier failures.
+        Independently of ``restarts``, an SLSQP optimum worse than the
+        initial design trimmed to the thrust is followed by one more run from
+        that trimmed design (:class:`~bild_mdo.optimization.lockstep.CaseRun`;
+        ``status`` says so).
     **options
         Keyword options of :func:`~bild_mdo.optimization.problem.build_optimization_problem`.
 

@@ -28,6 +28,7 @@ import openmdao.api as om
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.prandtl import LOSS_MODELS
+from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.bild.problem import bild_problem
@@ -74,7 +75,7 @@ def _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius
 def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_radius_ratio=0.2,
                  ref_radius_ratio=0.5, ref_chord=None, altitude=0.0, num_blades=3, airfoil="naca4412",
                  num_radial=30, loss_model="tip_hub", chord_form="thrust", root_chord_correction=None,
-                 on_infeasible="raise", thrust=None, section_point="reference"):
+                 on_infeasible="raise", thrust=None, section_point="reference", ideal_loading="paper"):
     """Design the ideal rotor(s) for given operating points with the BILD method (paper Alg. 1).
 
     Scalars give one design; lists or 1-D arrays (broadcast against each
@@ -124,6 +125,13 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         the Reynolds number) following from the load
         (:mod:`bild_mdo.bild.local_section_point`; a polar that varies with the
         Reynolds number only).
+    ideal_loading : {'paper', 'exact'}
+        ``'paper'`` (default): lambda of Eq. (22) and eta2 of the quartic (27).
+        ``'exact'``: every annulus makes ``E - lambda T`` stationary with the
+        Prandtl factor differentiated too
+        (:mod:`bild_mdo.bild.annulus_stationarity`); with a fixed airfoil point
+        this is the optimum of the BEM model (with ``section_point='local'``
+        each station's own point enters the condition).
     on_infeasible : {'raise', 'skip'}
         What to do with designs whose ideal loading does not exist (the
         paper's Assumption 3 fails at a station, or a hover rotor cannot load
@@ -166,6 +174,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     validation.choice("chord_form", chord_form, CHORD_FORMS)
     validation.choice("on_infeasible", on_infeasible, ON_INFEASIBLE)
     validation.choice("section_point", section_point, SECTION_POINTS)
+    validation.choice("ideal_loading", ideal_loading, IDEAL_LOADINGS)
     if root_chord_correction is not None:
         root_chord_correction = float(validation.positive("root_chord_correction", root_chord_correction,
                                                           hint="k of Eq. (32), or None", ndim=(0,)))
@@ -182,7 +191,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     # resolve_airfoil gives one polar object per airfoil text in a process, so bild_problem (keyed by the
     # polar) reuses the set-up problem on repeated calls.
     polar = resolve_airfoil(airfoil)
-    prob = bild_problem(airfoil=polar, thrust_target=thrust is not None, **config)
+    prob = bild_problem(airfoil=polar, thrust_target=thrust is not None, ideal_loading=ideal_loading, **config)
     polar = prob.model.options["polar"]
     for name, arr in values.items():
         prob.set_val(name, arr, units="N" if name == "thrust_target" else INPUT_UNITS[name])

@@ -74,7 +74,8 @@ VARIABLES = {
     "chord_raw": ("dist", 0.1, "m", "back-computed chord before the root-chord correction, Eq. (31)"),
     "u_axial_ref": ("node", 10.0, "m/s", "axial velocity at the rotor disk at the reference station"),
     "u_theta_ref": ("node", 1.0, "m/s", "tangential induced velocity at the reference station"),
-    "ideal_loading_constant": ("node", 10.0, "m/s", "ideal-loading constant lambda, Eq. (22)"),
+    "ideal_loading_constant": ("node", 10.0, "m/s",
+                               "ideal-loading constant lambda: marginal energy loss per marginal thrust, Eq. (22)"),
 }
 
 

@@ -27,7 +27,8 @@ from bild_mdo.optimization.problem import DEFAULT_MAXITER, DEFAULT_TOL, build_op
 from bild_mdo.optimization.run import optimize_rotor, optimize_rotors
 from bild_mdo.utils.batches import isolate_failures
 
-from .cases import CaseSetupError
+from .cases import START_KINDS, CaseSetupError, bild_setting
+from .starts import combine_starts
 
 #: Inputs that must be equal for cases to share one batched BILD model.
 _MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
@@ -37,10 +38,11 @@ _MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
 _PROBLEMS = {}
 
 
-def _group_cases(cases):
+def _group_cases(cases, section_points):
+    """Indices of ``cases`` by BILD model: the :data:`_MODEL_KEYS`, the ideal loading and the section point (last)."""
     groups = {}
     for index, case in enumerate(cases):
-        key = tuple(case.inputs[k] for k in _MODEL_KEYS)
+        key = tuple(case.inputs[k] for k in _MODEL_KEYS) + (_ideal_loading(case), section_points[index])
         groups.setdefault(key, []).append(index)
     return groups
 
@@ -76,8 +78,12 @@ def require_optimizer(optimizer):
 def bild_batch(cases):
     """BILD designs of many cases in one vectorised run (``num_nodes = len(cases)``).
 
-    Cases that differ in the number of stations, blades or airfoil are run
-    as separate batches (one per combination; the sweep has one).  When a
+    Cases that differ in the number of stations, blades, airfoil, ideal
+    loading or section point are run as separate batches (one per
+    combination; the sweep has one).  Each case is designed at its
+    ``section_point`` with its ``ideal_loading``; a case with
+    ``starts >= 2`` is also designed at the other section point (same ideal
+    loading), the optimiser's second start.  When a
     batch fails (one infeasible design fails the whole vectorised model), it
     is split in halves until every failing case is alone, so each failed case
     gets its own reason and the other cases their designs.
@@ -93,29 +99,57 @@ def bild_batch(cases):
         One per case, in order, with the keys of
         :data:`~bild_mdo.verification.store.RESULT_KEYS` (``energy_loss`` in
         W, ``chord`` in m and ``twist`` in rad at the stations) and
-        ``thrust`` (N), the thrust target of the optimisation.  ``run_time``
+        ``thrust`` (N), the thrust target of the optimisation; with
+        ``starts >= 2``, ``other_chord`` and ``other_twist`` (the other
+        section point's design, None where it failed) and ``run_time``
+        (this section point's share of the batch).  Otherwise ``run_time``
         is left to the runner (batch wall time divided by the number of
         cases).  A case whose design fails is marked not converged with the
         error text.
     """
     results = [None] * len(cases)
-    for indices in _group_cases(cases).values():
-        _bild_group(cases, indices, results)
+    points = [getattr(case, "section_point", "reference") for case in cases]
+    start = time.perf_counter()
+    for key, indices in _group_cases(cases, points).items():
+        _bild_group(cases, indices, results, key[-1], key[-2])
+    second = [i for i, case in enumerate(cases) if getattr(case, "starts", 1) >= 2 and results[i]["converged"]]
+    if second:
+        # BILD's run time is its own design's; the other point's design is a start of the optimiser.
+        share = (time.perf_counter() - start) / len(cases)
+        for row in results:
+            row["run_time"] = share
+        others = [_other_point(points[i]) for i in second]
+        alternatives = [None] * len(cases)
+        for key, members in _group_cases([cases[i] for i in second], others).items():
+            _bild_group(cases, [second[m] for m in members], alternatives, key[-1], key[-2])
+        for i in second:
+            usable = alternatives[i]["converged"]
+            results[i].update(other_chord=alternatives[i]["chord"] if usable else None,
+                              other_twist=alternatives[i]["twist"] if usable else None)
     return results
+
+
+def _ideal_loading(case):
+    return getattr(case, "ideal_loading", "paper")
+
+
+def _other_point(section_point):
+    return "local" if section_point == "reference" else "reference"
 
 
 class _SetupFailure(Exception):
     """A BILD model that cannot be set up: not a failure of a case, so never isolated by bisection."""
 
 
-def _bild_group(cases, indices, results):
+def _bild_group(cases, indices, results, section_point="reference", ideal_loading="paper"):
     """BILD for ``cases[i]`` for i in ``indices`` in one run, isolating the failing cases by bisection."""
     num_radial, num_blades, airfoil = (cases[indices[0]].inputs[k] for k in _MODEL_KEYS)
 
     def run(part):
         batch = [cases[i] for i in part]
         try:
-            prob = bild_problem(len(batch), int(num_radial), int(num_blades), sweep_polar(airfoil))
+            prob = bild_problem(len(batch), int(num_radial), int(num_blades), sweep_polar(airfoil),
+                                section_point=section_point, ideal_loading=ideal_loading)
         except (ValueError, TypeError) as exc:
             raise _SetupFailure(exc) from exc
         _set_bild_inputs(prob, batch)
@@ -127,8 +161,9 @@ def _bild_group(cases, indices, results):
     try:
         successes, failures = isolate_failures(run, indices, (om.AnalysisError, ValueError, ArithmeticError))
     except _SetupFailure as exc:
-        raise CaseSetupError(f"the BILD model cannot be set up for {num_blades} blades, {num_radial} "
-                             f"stations and airfoil {airfoil!r}: {exc.__cause__}") from exc.__cause__
+        raise CaseSetupError(f"the BILD model ({bild_setting(section_point, ideal_loading)}) cannot be set up for "
+                             f"{num_blades} blades, {num_radial} stations and airfoil {airfoil!r}: {exc.__cause__}"
+                             ) from exc.__cause__
     for i, exc in failures:
         results[i] = {"converged": False, "error": f"BILD failed: {' '.join(str(exc).split())}"}
     for part, (values, chord, twist) in successes:
@@ -158,7 +193,8 @@ def time_single_bild_design(case, repeats=20):
         Seconds per ``run_model`` of a set-up single-design problem.
     """
     inputs = case.inputs
-    prob = bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), sweep_polar(inputs["airfoil"]))
+    prob = bild_problem(1, int(inputs["num_radial"]), int(inputs["num_blades"]), sweep_polar(inputs["airfoil"]),
+                        section_point=getattr(case, "section_point", "reference"), ideal_loading=_ideal_loading(case))
     _set_bild_inputs(prob, [case])
     prob.run_model()
     best = np.inf
@@ -206,7 +242,8 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
     -------
     dict
         The keys of :data:`~bild_mdo.verification.store.RESULT_KEYS` at the
-        optimum, ``converged``, ``status`` and ``iterations``.
+        optimum, ``converged``, ``status`` and ``iterations``; with
+        ``case.starts > 1`` the best of the starts (:func:`optimize_cases`).
 
     Raises
     ------
@@ -218,6 +255,11 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
         is left to the runner (wall time of this call, including the one-off
         problem set-up of a worker's first case).
     """
+    if getattr(case, "starts", 1) > 1:
+        result = optimize_cases([(case, bild_result)], optimizer, initial, parameterization, tol, restarts)[0]
+        if isinstance(result, Exception):
+            raise result
+        return result
     inputs = case.inputs
     optimizer = case.optimizer if optimizer is None else optimizer
     try:
@@ -245,7 +287,12 @@ def optimize_cases(payloads, optimizer=None, initial="bild", parameterization="s
 
     Cases of one configuration (optimiser, stations, blades, airfoil) share
     one lockstep run (:func:`~bild_mdo.optimization.run.optimize_rotors`);
-    every case gets the result it gets alone.
+    every case gets the result it gets alone.  A case with ``starts > 1``
+    is optimised again from each further start of
+    :data:`~bild_mdo.verification.cases.START_KINDS` (the other section
+    point's BILD design, the linear cold start; one lockstep run per start),
+    and its row is the best of them with the spread between them
+    (:func:`~bild_mdo.verification.starts.combine_starts`).
 
     Parameters
     ----------
@@ -266,6 +313,26 @@ def optimize_cases(payloads, optimizer=None, initial="bild", parameterization="s
     ImportError
         If the optimiser's package is missing.
     """
+    first = _optimize_start(payloads, optimizer, initial, parameterization, tol, restarts)
+    runs = [first]
+    for number, kind in enumerate(START_KINDS[1:], start=2):
+        chosen = [k for k, (case, bild) in enumerate(payloads) if getattr(case, "starts", 1) >= number
+                  and (kind != "other_bild" or bild.get("other_chord") is not None)]
+        run = [None] * len(payloads)
+        if chosen:
+            part = [(payloads[k][0], dict(payloads[k][1], chord=payloads[k][1]["other_chord"],
+                                          twist=payloads[k][1]["other_twist"]) if kind == "other_bild"
+                     else payloads[k][1]) for k in chosen]
+            for k, result in zip(chosen, _optimize_start(part, optimizer, "linear" if kind == "linear" else "bild",
+                                                         parameterization, tol, restarts)):
+                run[k] = result
+        runs.append(run)
+    return [combine_starts([run[k] for run in runs]) if getattr(case, "starts", 1) > 1 else first[k]
+            for k, (case, _bild) in enumerate(payloads)]
+
+
+def _optimize_start(payloads, optimizer, initial, parameterization, tol, restarts):
+    """One start of :func:`optimize_cases` for every case: a lockstep run per configuration."""
     out = [None] * len(payloads)
     groups = {}
     for k, (case, _bild) in enumerate(payloads):

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
+from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.optimization.problem import OPTIMIZERS
 
@@ -24,6 +26,14 @@ CASE_LAYOUT_VERSION = 1
 
 # Swept axes in case-id order: the first axis varies slowest.
 AXES = ("advance_ratio", "radius", "altitude", "reference_chord")
+
+#: The optimiser's starts per case, in order (``SweepSpec.starts`` takes the first N): BILD at the sweep's
+#: section point, BILD at the other section point, the linear cold start.
+START_KINDS = ("bild", "other_bild", "linear")
+
+#: Settings that joined the sweep after stores were written; at these defaults they stay out of
+#: :meth:`SweepSpec.to_dict`, so the fingerprint of a sweep that does not use them is unchanged.
+_LATER_DEFAULTS = {"section_point": "reference", "starts": 1, "ideal_loading": "paper"}
 
 #: Largest number of levels per axis: 15**4 = 50,625 cases (five times the paper's sweep).
 MAX_LEVELS = 15
@@ -35,6 +45,11 @@ OPTIMIZATION_TIME_PER_CASE = 0.5  # s
 
 class CaseSetupError(ValueError):
     """A case could not be set up (optimiser missing, model set-up failed); it is not stored, so a rerun retries it."""
+
+
+def bild_setting(section_point="reference", ideal_loading="paper"):
+    """BILD's setting in words: ``'local section point'``, plus ``', exact ideal loading'`` off the paper's."""
+    return f"{section_point} section point" + ("" if ideal_loading == "paper" else f", {ideal_loading} ideal loading")
 
 
 def check_workers(workers):
@@ -99,11 +114,20 @@ class Case:
     optimizer : str
         Name of the NLP optimiser the reference optimisation should use
         (``'ipopt'``, ``'slsqp'`` or ``'snopt'``).
+    section_point : {'reference', 'local'}
+        BILD's section point (:class:`~bild_mdo.bild.BILDGroup`); its design is the sweep's BILD design.
+    starts : int
+        Starts of the optimiser, the first ``starts`` of :data:`START_KINDS`.
+    ideal_loading : {'paper', 'exact'}
+        BILD's ideal loading (:class:`~bild_mdo.bild.BILDGroup`), of every BILD start.
     """
 
     case_id: int
     inputs: dict
     optimizer: str = "slsqp"
+    section_point: str = "reference"
+    starts: int = 1
+    ideal_loading: str = "paper"
 
 
 @dataclass(frozen=True)
@@ -145,6 +169,18 @@ class SweepSpec:
     optimizer : str
         Optimiser used for the reference BEM optimisation; part of the
         fingerprint so results of different optimisers are never mixed.
+    section_point : {'reference', 'local'}
+        BILD's section point: the paper's one max-L/D point at the reference
+        station, or each station's own (``BILDGroup(section_point=...)``).
+    starts : int
+        Optimiser starts per case, 1 to ``len(START_KINDS)`` (see
+        :data:`START_KINDS`); the lowest-energy converged optimum is the
+        reference.
+    ideal_loading : {'paper', 'exact'}
+        BILD's ideal loading: the paper's Eq. (22) or the exact one with
+        Prandtl's F (``BILDGroup(ideal_loading=...)``).  ``section_point``,
+        ``starts`` and ``ideal_loading`` are part of the fingerprint (left out
+        of it at their defaults, so older stores of the paper's setting still resume).
     """
 
     levels: int = 10
@@ -159,6 +195,9 @@ class SweepSpec:
     num_radial: int = 30
     airfoil: str = "naca4412"
     optimizer: str = "slsqp"
+    section_point: str = "reference"
+    starts: int = 1
+    ideal_loading: str = "paper"
 
     def __post_init__(self):
         if isinstance(self.levels, bool) or not isinstance(self.levels, (int, np.integer)) or self.levels < 2:
@@ -185,6 +224,14 @@ class SweepSpec:
             raise ValueError(f"airfoil must be a non-empty string (a store keeps it as text), got {self.airfoil!r}")
         if self.optimizer not in OPTIMIZERS:
             raise ValueError(f"optimizer must be one of {OPTIMIZERS}, got {self.optimizer!r}")
+        if self.section_point not in SECTION_POINTS:
+            raise ValueError(f"section point must be one of {', '.join(SECTION_POINTS)}, got {self.section_point!r}")
+        if (isinstance(self.starts, bool) or not isinstance(self.starts, (int, np.integer))
+                or not 1 <= self.starts <= len(START_KINDS)):
+            raise ValueError(f"starts must be an integer from 1 to {len(START_KINDS)} ({', '.join(START_KINDS)}), "
+                             f"got {self.starts!r}")
+        if self.ideal_loading not in IDEAL_LOADINGS:
+            raise ValueError(f"ideal loading must be one of {', '.join(IDEAL_LOADINGS)}, got {self.ideal_loading!r}")
 
     def _range(self, axis):
         lo, hi = getattr(self, f"{axis}_range")
@@ -206,7 +253,7 @@ class SweepSpec:
         return {name: np.linspace(*self._range(name), int(self.levels)) for name in AXES}
 
     def to_dict(self):
-        """Plain JSON-able dict of every field (ranges as lists)."""
+        """Plain JSON-able dict of every field (ranges as lists); the :data:`_LATER_DEFAULTS` only off their defaults."""
         out = {}
         for field in dataclasses.fields(self):
             value = getattr(self, field.name)
@@ -216,6 +263,8 @@ class SweepSpec:
                 value = int(value)
             elif isinstance(value, (np.floating, float)):
                 value = float(value)
+            if _LATER_DEFAULTS.get(field.name, object()) == value:
+                continue
             out[field.name] = value
         return out
 
@@ -267,7 +316,8 @@ class SweepSpec:
             num_radial=int(self.num_radial),
             airfoil=str(self.airfoil),
         )
-        return Case(case_id=case_id, inputs=inputs, optimizer=self.optimizer)
+        return Case(case_id=case_id, inputs=inputs, optimizer=self.optimizer, section_point=self.section_point,
+                    starts=int(self.starts), ideal_loading=self.ideal_loading)
 
     def cases(self, case_ids=None):
         """Return cases in id order.

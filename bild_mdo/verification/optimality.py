@@ -42,6 +42,8 @@ from bild_mdo.constants import RPM_TO_REV_PER_S
 
 from bild_mdo.airfoil.text import sweep_polar
 
+from .cases import bild_setting
+
 #: Loss model of the optimisation problem the optimum comes from.
 LOSS_MODEL = "tip_hub"
 
@@ -270,6 +272,16 @@ class OptimalityCheck:
     invalid_flow_ids : list of int
         Compared cases whose trimmed BILD design has stations in an invalid
         BEM flow state (its E_trim is less reliable there).
+    mean_excess, max_excess : float
+        Mean and largest energy excess of the trimmed BILD design over the
+        optimum, ``(E_trim - E_opt) / E_opt`` (-); NaN without cases.
+    max_excess_case_id : int or None
+        Case of ``max_excess``.
+    section_point : str or None
+        BILD's section point of the rows; when given, :meth:`summary` adds
+        the excess line for it.
+    ideal_loading : str
+        BILD's ideal loading of the rows; the excess line names it when it is not the paper's.
     """
 
     tolerance: float
@@ -286,6 +298,11 @@ class OptimalityCheck:
     max_pitch_offset: float
     max_trim_residual: float
     invalid_flow_ids: list = dataclasses.field(default_factory=list)
+    mean_excess: float = math.nan
+    max_excess: float = math.nan
+    max_excess_case_id: object = None
+    section_point: str = None
+    ideal_loading: str = "paper"
 
     @property
     def num_violations(self):
@@ -312,6 +329,11 @@ class OptimalityCheck:
             f"  BILD's reported E vs E_BILD,trimmed: mean |diff| {100.0 * self.bild_reported_mean_abs:.3f} %, "
             f"max {100.0 * self.bild_reported_max_abs:.3f} %.",
         ]
+        if self.section_point is not None:
+            lines.append(f"  BILD ({bild_setting(self.section_point, self.ideal_loading)}) trimmed to T*: energy "
+                         f"excess over the optimum "
+                         f"(E_BILD,trimmed - E_opt)/E_opt mean {100.0 * self.mean_excess:+.3f} %, worst "
+                         f"{100.0 * self.max_excess:+.3f} % (case {self.max_excess_case_id}).")
         if self.violations:
             shown = ", ".join(f"{cid} ({100.0 * m:+.4f} %)" for cid, m in self.violations[:10])
             more = "" if len(self.violations) <= 10 else f" and {len(self.violations) - 10} more"
@@ -325,7 +347,7 @@ class OptimalityCheck:
         return "\n".join(lines)
 
 
-def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None):
+def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None, section_point=None, ideal_loading="paper"):
     """Check that no optimum has a higher energy loss than BILD's design trimmed to the same thrust.
 
     Parameters
@@ -339,6 +361,11 @@ def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None):
     trim : BildTrim, optional
         The trim of exactly the compared rows, to reuse one already computed;
         computed with :func:`trimmed_bild_energy_loss` when omitted.
+    section_point : str, optional
+        BILD's section point of the rows (``'reference'`` or ``'local'``):
+        the summary then reports the trimmed design's energy excess for it.
+    ideal_loading : str
+        BILD's ideal loading of the rows (``'paper'`` or ``'exact'``), named by that line when not the paper's.
 
     Returns
     -------
@@ -369,6 +396,7 @@ def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None):
                        for row in compared], dtype=float)[ok]
     e_trim = trim.energy_loss[ok]
     margin = (e_opt - e_trim) / e_trim
+    excess = (e_trim - e_opt) / e_opt
     reported = np.abs(e_bild - e_trim) / e_trim
     reported = reported[np.isfinite(reported)]
     bad = margin > tolerance
@@ -395,4 +423,9 @@ def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None):
         max_trim_residual=stat(np.max, np.abs(trim.thrust_residual[ok])),
         invalid_flow_ids=[] if trim.invalid_stations is None else
         [int(cid) for cid in ids[ok][np.asarray(trim.invalid_stations)[ok] > 0]],
+        mean_excess=stat(np.mean, excess),
+        max_excess=stat(np.max, excess),
+        max_excess_case_id=int(ids[ok][np.argmax(excess)]) if num else None,
+        section_point=section_point,
+        ideal_loading=ideal_loading,
     )

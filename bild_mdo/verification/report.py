@@ -29,12 +29,20 @@ def default_db_path(spec):
     ``bild-verify-L{levels}-{optimizer}-{airfoil}.sqlite`` for another one
     (the airfoil text with every run of other characters than letters,
     digits, ``.`` and ``=`` replaced by ``-``, at most 40 characters), so
-    that sweeps of different airfoils do not meet in one file.
+    that sweeps of different airfoils do not meet in one file; then
+    ``-local`` for the local section point, ``-exact`` for the exact ideal
+    loading and ``-starts{N}`` for several starts.
     """
     name = f"bild-verify-L{spec.levels}-{spec.optimizer}"
     if spec.airfoil.strip().lower() != DEFAULT_AIRFOIL:
         slug = re.sub(r"[^a-z0-9.=]+", "-", spec.airfoil.strip().lower()).strip("-.")[:40].strip("-.")
         name += f"-{slug or 'airfoil'}"
+    if getattr(spec, "section_point", "reference") != "reference":
+        name += f"-{spec.section_point}"
+    if getattr(spec, "ideal_loading", "paper") != "paper":
+        name += f"-{spec.ideal_loading}"
+    if getattr(spec, "starts", 1) > 1:
+        name += f"-starts{spec.starts}"
     return f"{name}.sqlite"
 
 
@@ -67,7 +75,7 @@ def sweep_summary(spec, db_path, run):
             f"{len(run.computed_ids)} computed in {format_duration(run.wall_time)} ({run.num_failed} not converged).")
 
 
-def verification_table(rows):
+def verification_table(rows, section_point=None, ideal_loading="paper"):
     """Table 3 of a results store, with the check that every optimum is an optimum.
 
     A failed optimality check must not cost the figures of a finished sweep,
@@ -77,6 +85,11 @@ def verification_table(rows):
     ----------
     rows : list of dict
         :meth:`ResultsStore.rows`.
+    section_point : str, optional
+        BILD's section point of the sweep; when given, the check reports
+        BILD's trimmed energy excess over the optimum for it.
+    ideal_loading : str
+        BILD's ideal loading of the sweep, named in that report when not the paper's.
 
     Returns
     -------
@@ -88,7 +101,7 @@ def verification_table(rows):
     """
     table = table3(rows)
     try:
-        table.optimality = optimality_check(rows)
+        table.optimality = optimality_check(rows, section_point=section_point, ideal_loading=ideal_loading)
     except (om.AnalysisError, ValueError, ArithmeticError) as exc:
         return table, str(exc)
     return table, None

@@ -41,6 +41,7 @@ import numpy as np
 from .cases import CaseSetupError, check_workers
 from .executors import check_picklable, connect_dask, run_tasks
 from .report import progress_bar, default_db_path, format_duration, sweep_summary, verification_table  # noqa: F401
+from .starts import START_COLUMNS
 from .store import INPUT_COLUMNS, RESULT_ARRAYS, RESULT_KEYS, ResultsStore
 from .warning_relay import WarningRelay, recorded_warnings
 
@@ -223,6 +224,7 @@ def _finish_row(row, outcome, error):
     row["converged"] = bool(result["converged"])
     row["status"] = None if result.get("status") is None else str(result["status"])
     row["iterations"] = result.get("iterations")
+    row.update({key: result.get(key) for key in START_COLUMNS})
     if result.get("run_time") is not None:
         row["opt_time"] = float(result["run_time"])
     return row

@@ -111,6 +111,13 @@ class Table3:
         same thrust (:func:`~bild_mdo.verification.optimality.optimality_check`);
         not computed by :func:`table3` (it runs BEM analyses), set by the caller.
         When set, :func:`format_table3` prints its summary under the table.
+    start_spread : dict or None
+        With several optimiser starts (``verify --starts``): ``num_cases``
+        (converged cases with at least two converged starts), ``num_single``
+        (those with only one), ``best_start`` (cases per
+        best start, from 1) and, for ``twist``, ``chord`` and ``energy``,
+        ``(mean, max)`` of the spread between the starts in percent
+        (:mod:`~bild_mdo.verification.starts`); None with one start.
     """
 
     quantities: dict
@@ -121,6 +128,7 @@ class Table3:
     mean_run_time_bild: float
     mean_run_time_opt: float
     optimality: object = None
+    start_spread: dict = None
 
     @property
     def speedup(self):
@@ -224,6 +232,7 @@ def table3(rows):
         return float(np.mean(times)) if times else math.nan
 
     return Table3(
+        start_spread=_start_spread(converged),
         quantities=quantities,
         num_cases=num,
         num_converged=len(converged),
@@ -232,6 +241,31 @@ def table3(rows):
         mean_run_time_bild=mean_time("bild_time"),
         mean_run_time_opt=mean_time("opt_time"),
     )
+
+
+def _start_spread(rows):
+    """Mean and largest spread between the optimiser's starts (%), or None when no row compared starts."""
+    with_starts = [r for r in rows if r.get("starts_converged") is not None]
+    if not with_starts:
+        return None
+    compared = [r for r in with_starts if r["starts_converged"] >= 2]
+    out = {"num_cases": len(compared), "num_single": len(with_starts) - len(compared),
+           "best_start": {k: sum(r.get("best_start") == k for r in compared)
+                          for k in sorted({r.get("best_start") for r in compared} - {None})}}
+    for name in ("twist", "chord", "energy"):
+        values = 100.0 * np.array([float(r[f"start_spread_{name}"]) for r in compared])
+        out[name] = (float(values.mean()), float(values.max())) if values.size else (math.nan, math.nan)
+    return out
+
+
+def format_start_spread(spread):
+    """One line on the spread between the optimiser's starts (:attr:`Table3.start_spread`)."""
+    parts = ", ".join(f"{name} {spread[name][0]:.3f} % (max {spread[name][1]:.3f} %)"
+                      for name in ("twist", "chord", "energy"))
+    best = ", ".join(f"start {k} in {n}" for k, n in spread["best_start"].items())
+    return (f"Start spread (mean over the {spread['num_cases']} cases with >= 2 converged starts; largest distance "
+            f"between them relative to the best, the Table 3 reference): {parts}; best: {best or '-'}; "
+            f"{spread['num_single']} cases with one converged start.")
 
 
 def _fmt_range(rng):
@@ -289,5 +323,6 @@ def format_table3(table):
         f"Table 3 reproduction: {table.num_cases} cases, {table.num_converged} with both methods converged "
         f"(statistics over those; eta over J > 0, FM over J = 0); speed-up {_fmt_number(table.speedup, 1)}x"
     )
-    footer = [] if table.optimality is None else [table.optimality.summary()]
+    footer = [] if table.start_spread is None else [format_start_spread(table.start_spread)]
+    footer += [] if table.optimality is None else [table.optimality.summary()]
     return "\n".join([title, rule, render(header), rule] + [render(line) for line in lines] + [rule] + footer)

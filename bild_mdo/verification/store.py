@@ -23,11 +23,13 @@ import numpy as np
 from bild_mdo import __version__
 from bild_mdo.bem.metrics import VERIFIED_METRICS
 
+from .starts import START_COLUMNS
 from .store_file import (StoreBusyError, StoreError, StoreFullError, acquire_writer_lock, check_store_path,
                          full_error, is_disk_full, operational_error)
 
-# Version 2 added the per-row checksum; a version-1 store is upgraded when a sweep opens it.
-SCHEMA_VERSION = 2
+# Version 2 added the per-row checksum, version 3 the start columns; an older store is upgraded when a sweep
+# opens it.
+SCHEMA_VERSION = 3
 META_TABLE = "meta"
 RESULTS_TABLE = "results"
 
@@ -68,6 +70,8 @@ COLUMNS = (
         ("error", "TEXT"),
         ("finished_at", "REAL"),
     )
+    # Version 3: the comparison of the optimiser's starts (verify --starts), NULL with one start.
+    + tuple((name, "INTEGER" if name in ("starts_converged", "best_start") else "REAL") for name in START_COLUMNS)
 )
 COLUMN_NAMES = tuple(name for name, _ in COLUMNS)
 # SHA-256 of the row's values (every column above), checked when a sweep opens the store.
@@ -83,7 +87,8 @@ __all__ = ["ResultsStore", "StoreError", "StoreBusyError", "StoreFullError", "RE
 def row_checksum(values):
     """Checksum of one row: 16 hex digits of the SHA-256 of its values in column order.
 
-    Floats enter exactly (``float.hex``), so any change of a stored bit changes it.
+    Floats enter exactly (``float.hex``), so any change of a stored bit changes it.  A start column
+    (version 3) enters only when it holds a value, so a version-2 row keeps its checksum.
 
     Parameters
     ----------
@@ -95,7 +100,9 @@ def row_checksum(values):
     str
     """
     parts = []
-    for (_name, kind), value in zip(COLUMNS, values):
+    for (name, kind), value in zip(COLUMNS, values):
+        if value is None and name in START_COLUMNS:
+            continue
         if value is None:
             parts.append("N")
         elif kind == "REAL" and isinstance(value, (int, float)) and not isinstance(value, bool):
@@ -219,6 +226,9 @@ class ResultsStore:
             raise sqlite3.DatabaseError(f"the meta table lacks its entries ({sorted(meta)})")
         if version == "1" and self.writer:
             self._upgrade_from_1()
+            self._upgrade_from_2()
+        elif version == "2" and self.writer:
+            self._upgrade_from_2()
         elif version != str(SCHEMA_VERSION):
             raise StoreError(
                 f"'{self.path}' has results-store schema version {version!r}, this bild-mdo writes version "
@@ -253,9 +263,19 @@ class ResultsStore:
             self._conn.execute(f"CREATE TABLE {RESULTS_TABLE} (\n  {cols}\n)")
             self._conn.executemany(f"INSERT INTO {META_TABLE} VALUES (?, ?)", sorted(meta.items()))
 
+    def _upgrade_from_2(self):
+        # The start columns are NULL in older rows, which leaves their checksums as they were.
+        present = {record[1] for record in self._conn.execute(f"PRAGMA table_info({RESULTS_TABLE})")}
+        with self._conn:
+            for name in (n for n in START_COLUMNS if n not in present):
+                self._conn.execute(f"ALTER TABLE {RESULTS_TABLE} ADD COLUMN {name} {_KINDS[name]}")
+            self._conn.execute(f"UPDATE {META_TABLE} SET value = ? WHERE key = 'schema_version'",
+                               (str(SCHEMA_VERSION),))
+
     def _upgrade_from_1(self):
         # Version 1 had no checksum: the rows are taken as they are and get one now.
-        records = self._conn.execute(f"SELECT {', '.join(COLUMN_NAMES)} FROM {RESULTS_TABLE}").fetchall()
+        names = [name for name in COLUMN_NAMES if name not in START_COLUMNS]
+        records = self._conn.execute(f"SELECT {', '.join(names)} FROM {RESULTS_TABLE}").fetchall()
         with self._conn:
             self._conn.execute(f"ALTER TABLE {RESULTS_TABLE} ADD COLUMN {CHECKSUM_COLUMN} TEXT")
             self._conn.executemany(f"UPDATE {RESULTS_TABLE} SET {CHECKSUM_COLUMN} = ? WHERE case_id = ?",

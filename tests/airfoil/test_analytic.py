@@ -30,7 +30,7 @@ def test_first_and_second_derivatives_match_complex_step(polar):
     alpha, reynolds = _sample()
     (v, s) = polar._all(alpha, reynolds)
     cl, cd, dcl_da, dcl_dre, dcd_da, dcd_dre = v
-    d2cl_da2, d2cl_dadre, d2cd_da2, d2cd_dadre = s
+    d2cl_da2, d2cl_dadre, d2cd_da2, d2cd_dadre, d2cl_dre2, d2cd_dre2 = s
     va, _ = polar._all(alpha + 1j * H, reynolds)
     vr, _ = polar._all(alpha + 0j, reynolds + 1j * H)
     np.testing.assert_allclose(va[0].imag / H, dcl_da, rtol=1e-12, atol=1e-12)
@@ -40,10 +40,25 @@ def test_first_and_second_derivatives_match_complex_step(polar):
     np.testing.assert_allclose(vr[0].imag / H, dcl_dre, atol=1e-25)
     np.testing.assert_allclose(vr[1].imag / H, dcd_dre, rtol=1e-12, atol=1e-25)
     np.testing.assert_allclose(vr[4].imag / H, d2cd_dadre, rtol=1e-11, atol=1e-24)
-    assert np.all(d2cl_dadre == 0.0)
+    # Second Reynolds derivatives (the local section point's G_Re): complex step of d/dRe.
+    np.testing.assert_allclose(vr[3].imag / H, d2cl_dre2, atol=1e-30)
+    np.testing.assert_allclose(vr[5].imag / H, d2cd_dre2, rtol=1e-11, atol=1e-30)
+    assert np.all(d2cl_dadre == 0.0) and np.all(d2cl_dre2 == 0.0)
     # The Re terms are not trivially zero: the derivative test above can fail.
     assert np.max(np.abs(dcd_dre)) > 1e-10
     assert np.max(np.abs(d2cd_dadre)) > 1e-9
+    assert np.max(np.abs(d2cd_dre2 * reynolds**2)) > 1e-4
+
+
+def test_second_reynolds_derivative_is_the_power_law_in_attached_flow(polar):
+    # Hand derivation: below the stall blend cd = cd0 (Re/Re_ref)^-n + k (cl - cl_cd_min)^2, so
+    # d2cd/dRe2 = n (n + 1) cd0 (Re/Re_ref)^-n / Re^2 (n = 0.2), and lift does not depend on Re.
+    alpha = np.radians(np.linspace(-5.0, 8.0, 14))
+    reynolds = np.geomspace(1e4, 1e8, 14)
+    s = polar.second_derivatives(alpha, reynolds)
+    want = 0.2 * 1.2 * 0.008 * (reynolds / 1e6) ** -0.2 / reynolds**2
+    np.testing.assert_allclose(s.d2cd_dre2, want, rtol=1e-13)
+    np.testing.assert_array_equal(s.d2cl_dre2, 0.0)
 
 
 def test_public_methods_agree_with_internal(polar):

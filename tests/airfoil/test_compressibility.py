@@ -76,6 +76,26 @@ def test_polar_mach_derivatives_by_complex_step(correction):
     np.testing.assert_allclose(np.imag(vc.cl) / H, v.dcl_dmach, rtol=1e-14)
 
 
+@pytest.mark.parametrize("correction", ["prandtl-glauert", "karman-tsien"])
+def test_second_reynolds_derivatives_by_complex_step(correction):
+    # cl = F(cl_base(alpha, Re), M): d2cl/dRe2 = F_cc cl_Re**2 + F_c cl_ReRe; the NACA 4412 surrogate's
+    # lift depends on Re and its _compute is complex-step safe in Re, so the complex step of
+    # dcl/dRe = F_c(cl_base) cl_base_Re checks it.  Drag is the base polar's.
+    base = resolve_polar("naca4412")
+    polar = CompressiblePolar(base, correction)
+    rng = np.random.default_rng(4)
+    alpha = rng.uniform(-0.1, 0.2, 10)
+    reynolds = np.exp(rng.uniform(np.log(6e4), np.log(1.9e6), 10))
+    mach = rng.uniform(0.05, 0.65, 10)
+    s = polar.second_derivatives(alpha, reynolds, mach=mach)
+    (cl, _, cl_re), (_, _, cd_re) = base._compute(alpha, reynolds + 1j * H * reynolds, second=False)
+    rule = prandtl_glauert if correction == "prandtl-glauert" else karman_tsien
+    f_c = rule(cl, mach)[1]
+    np.testing.assert_allclose(np.imag(f_c * cl_re) / H, s.d2cl_dre2 * reynolds, rtol=1e-10, atol=1e-20)
+    np.testing.assert_allclose(np.imag(cd_re) / H, s.d2cd_dre2 * reynolds, rtol=1e-10, atol=1e-20)
+    assert np.max(np.abs(s.d2cl_dre2 * reynolds**2)) > 1e-3
+
+
 def test_no_mach_is_exactly_the_base_polar():
     base = AnalyticPolar()
     polar = CompressiblePolar(base, "karman-tsien")

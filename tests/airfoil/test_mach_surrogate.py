@@ -78,6 +78,25 @@ def test_mach_derivatives_by_complex_step(polar):
     np.testing.assert_allclose(np.imag(dcl_da_c) / H, s.d2cl_dalpha_dmach, rtol=1e-12)
 
 
+def test_second_reynolds_derivatives_by_complex_step(polar):
+    # c(M, Re) = sum_k w_k(M) c_k(Re): d2c/dRe2 is the weighted sum of the members', and each member's
+    # TabulatedPolar._compute is complex-step safe in Re, so the complex step of the blended dc/dRe
+    # checks it (inside the members' Reynolds range and past it on both sides).
+    rng = np.random.default_rng(7)
+    alpha = rng.uniform(-0.15, 0.2, 12)
+    reynolds = np.concatenate([rng.uniform(2.2e5, 9e5, 6), [1e5, 1.5e5, 3e6], rng.uniform(2e6, 5e6, 3)])
+    mach = rng.uniform(0.02, 0.68, 12)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*Reynolds numbers outside the tabulated range")
+        s = polar.second_derivatives(alpha, reynolds, mach=mach)
+        w, _ = polar.mach_weights(mach)
+        members = [m._compute(alpha, reynolds + 1j * H * reynolds, second=False) for m in polar.members]
+    for q, field in ((0, "d2cl_dre2"), (1, "d2cd_dre2")):
+        c_re = sum(wk * m[q][2] for wk, m in zip(w, members))
+        np.testing.assert_allclose(np.imag(c_re) / H, getattr(s, field) * reynolds, rtol=1e-10, atol=1e-20)
+    assert np.max(np.abs(s.d2cd_dre2 * reynolds**2)) > 1e-4
+
+
 def test_at_a_tabulated_mach_number_the_surrogate_is_that_table(polar):
     alpha = np.radians(np.linspace(-10, 15, 26))
     for m, member in zip(MACHS, polar.members):

@@ -93,3 +93,18 @@ def test_out_of_range_warning_comes_from_the_query(surrogate):
         warnings.simplefilter("always")
         max_lift_to_drag_tabulated(surrogate, np.array([2e4]))
     assert [w for w in caught if "2e+04" in str(w.message)]
+
+
+def test_point_without_derivatives_is_the_same_root_with_lazy_derivatives(surrogate):
+    # derivatives=False: the first Newton pass without second derivatives (table curvature) lands on the
+    # exact solver's root to round-off, and the derivatives evaluated on first use are the full result's.
+    reynolds = np.exp(np.random.default_rng(5).uniform(np.log(5.2e4), np.log(1.9e6), 2000))
+    exact = max_lift_to_drag(surrogate, reynolds)
+    lazy = max_lift_to_drag_tabulated(surrogate, reynolds, derivatives=False)
+    full = max_lift_to_drag_tabulated(surrogate, reynolds)
+    np.testing.assert_allclose(lazy.alpha, exact.alpha, rtol=1e-12)
+    np.testing.assert_allclose(lazy.cl, exact.cl, rtol=1e-12)
+    np.testing.assert_allclose(lazy.cd, exact.cd, rtol=1e-12)
+    for name in ("dalpha_dre", "dcl_dre", "dcd_dre"):
+        np.testing.assert_allclose(getattr(lazy, name), getattr(full, name), rtol=1e-9)
+    np.testing.assert_array_equal(lazy.full().alpha, lazy.alpha)

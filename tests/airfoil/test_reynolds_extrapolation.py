@@ -5,7 +5,10 @@ of the table, ``d = L - L_e`` and the edge's value ``f(alpha)`` and slope ``s = 
 
     cl = f + d s,    cd = f exp(d s / f) = f (Re / Re_e)^(s / (f ln 10)).
 
-Both match the edge's value and slope, and ``cd`` is positive wherever ``f`` is.
+Both match the edge's value and slope, and ``cd`` is positive wherever ``f`` is.  Their second
+derivatives in ``L`` are ``0`` (lift) and ``cd (s / f)**2`` (drag); in ``Re`` (``dL/dRe = 1 / (Re ln 10)``)::
+
+    c_Re = c_L / (Re ln 10),   c_ReRe = (c_LL / ln 10 - c_L) / (Re**2 ln 10).
 """
 import warnings
 
@@ -14,7 +17,7 @@ import pytest
 
 from bild_mdo.airfoil import AnalyticPolar, TabulatedPolar, naca4412
 from bild_mdo.airfoil.sources import PolarData
-from bild_mdo.airfoil.surrogate import extrapolate_log_reynolds
+from bild_mdo.airfoil.surrogate_terms import extrapolate_log_reynolds
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
 from bild_mdo.utils.testing import check_component_partials
 from tests.bild.conftest import NN, state
@@ -127,17 +130,73 @@ def test_formula_derivatives_by_complex_step():
                 -0.002 + 0.01 * sin, 0.01 * cos, -0.01 * sin]
         return np.stack([np.stack(lift), np.stack(drag)], axis=1)
 
-    c, c_a, c_aa, c_l, c_al = extrapolate_log_reynolds(edge_terms(alpha), delta)
+    c, c_a, c_aa, c_l, c_al, c_ll = extrapolate_log_reynolds(edge_terms(alpha), delta)
     by_alpha = extrapolate_log_reynolds(edge_terms(alpha + 1j * H), delta)
     np.testing.assert_allclose(by_alpha[0].imag / H, c_a, rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(by_alpha[1].imag / H, c_aa, rtol=1e-12, atol=1e-15)
     by_delta = extrapolate_log_reynolds(edge_terms(alpha), delta + 1j * H)
     np.testing.assert_allclose(by_delta[0].imag / H, c_l, rtol=1e-12, atol=1e-15)
     np.testing.assert_allclose(by_delta[1].imag / H, c_al, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(by_delta[3].imag / H, c_ll, rtol=1e-12, atol=1e-15)
+    # Lift linear in L; drag f exp(d m): its curvature is cd m**2 (module docstring).
+    np.testing.assert_array_equal(c_ll[0], 0.0)
+    m = edge_terms(alpha)[3, 1] / edge_terms(alpha)[0, 1]
+    np.testing.assert_allclose(c_ll[1], c[1] * m * m, rtol=1e-14)
     # At the edge (d = 0) every returned quantity is the edge's.
     at_edge = extrapolate_log_reynolds(edge_terms(alpha), np.zeros_like(alpha))
     for k, row in enumerate((0, 1, 2, 3, 4)):
         np.testing.assert_allclose(at_edge[k], edge_terms(alpha)[row], rtol=1e-14, atol=1e-16)
+
+
+def _reynolds_positions(polar):
+    """Reynolds numbers inside the table (cell middles), at every tabulated one (both edges included), just
+    past the edges and far past them on both sides."""
+    table = polar.reynolds
+    edges = (table[0], table[-1])
+    return np.concatenate([np.sqrt(table[:-1] * table[1:]), table, [edges[0] * (1 - 1e-9), edges[1] * (1 + 1e-9)],
+                           edges[0] * np.array([0.5, 1e-2, 1e-4]), edges[1] * np.array([2.0, 1e2, 1e4])])
+
+
+def test_second_reynolds_derivatives_by_complex_step(polar):
+    # TabulatedPolar._compute is complex-step safe in Re (spline in log10 Re within the table, the
+    # continuation past it), so the complex step of its first derivatives dc/dRe and dc/dalpha is the exact
+    # Re derivative of the implemented formulas: it must equal d2c/dRe2 and d2c/(dalpha dRe).  At a
+    # tabulated Reynolds number the real part picks the cell above it (the table's top edge: the cell below),
+    # the same one-sided cell as the real evaluation.
+    alpha = ALPHA + np.radians(0.06)
+    for re in _reynolds_positions(polar):
+        reynolds = np.full(alpha.shape, re)
+        (_, cl_a, cl_re), (_, cd_a, cd_re) = polar._compute(alpha, reynolds + 1j * H * re, second=False)
+        s = polar.second_derivatives(alpha, reynolds)
+        scale = re * re  # per unit (ln Re)**2
+        np.testing.assert_allclose(cl_re.imag / H * re, s.d2cl_dre2 * scale, rtol=1e-10, atol=1e-11)
+        np.testing.assert_allclose(cd_re.imag / H * re, s.d2cd_dre2 * scale, rtol=1e-10, atol=1e-12)
+        np.testing.assert_allclose(cl_a.imag / H, s.d2cl_dalpha_dre * re, rtol=1e-10, atol=1e-11)
+        np.testing.assert_allclose(cd_a.imag / H, s.d2cd_dalpha_dre * re, rtol=1e-10, atol=1e-12)
+        # The real parts are the public first derivatives (to the round-off of complex arithmetic).
+        v = polar.evaluate(alpha, reynolds)
+        np.testing.assert_allclose(cl_re.real, v.dcl_dre, rtol=1e-12, atol=1e-20)
+        np.testing.assert_allclose(cd_a.real, v.dcd_dalpha, rtol=1e-12, atol=1e-14)
+    # The curvature is really there, inside the table and past it, so the check can fail (the synthetic
+    # polar's lift does not depend on Re: its source, AnalyticPolar, has Re in its drag only).
+    for re in (np.sqrt(polar.reynolds[0] * polar.reynolds[1]), polar.reynolds[-1] * 100.0):
+        s = polar.second_derivatives(alpha, np.full(alpha.shape, re))
+        assert np.max(np.abs(s.d2cd_dre2)) * re**2 > 1e-4
+        if polar.name != "synthetic":
+            assert np.max(np.abs(s.d2cl_dre2)) * re**2 > 1e-3
+
+
+@pytest.mark.parametrize("side, factor", [(0, 0.3), (0, 1e-3), (1, 1.5), (1, 1e3)])
+def test_second_reynolds_derivatives_past_the_edges_hand_formula(polar, side, factor):
+    # Module docstring: past an edge c_LL = 0 (lift), cd (s_cd / f_cd)**2 (drag), with the edge's public values.
+    re_edge = _edges(polar)[side]
+    v_edge, _, scale = _edge_slopes(polar, re_edge)
+    re = re_edge * factor
+    v, s = polar.evaluate(ALPHA, re), polar.second_derivatives(ALPHA, re)
+    for c, c_re, c_rere, c_ll in ((v.cl, v.dcl_dre, s.d2cl_dre2, 0.0),
+                                  (v.cd, v.dcd_dre, s.d2cd_dre2, v.cd * (v_edge.dcd_dre * scale / v_edge.cd) ** 2)):
+        c_l = c_re * re * LN10
+        np.testing.assert_allclose(c_rere * re * re, (c_ll / LN10 - c_l) / LN10, rtol=1e-10, atol=1e-14)
 
 
 def test_second_derivatives_beyond_the_edges_match_central_differences(polar):

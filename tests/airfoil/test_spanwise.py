@@ -57,6 +57,22 @@ def test_radial_derivatives_by_complex_step(polar):
         np.testing.assert_allclose(np.imag(blend_a) / H, getattr(s, d2), rtol=1e-12, atol=1e-15)
 
 
+def test_second_reynolds_derivatives_by_complex_step(polar):
+    # c = (1 - s) c_root + s c_tip: d2c/dRe2 is the same blend of the airfoils' (AnalyticPolar._all is
+    # complex-step safe, so the complex step of the blended dc/dRe checks it).
+    rng = np.random.default_rng(12)
+    alpha = rng.uniform(-0.2, 0.3, 20)
+    reynolds = rng.uniform(1e5, 2e6, 20)
+    x = rng.uniform(0.0, 1.0, 20)
+    s = polar.second_derivatives(alpha, reynolds, radial_fraction=x)
+    _, w, _ = polar.weights(x)
+    root, tip = (p._all(alpha + 0j, reynolds + 1j * H)[0] for p in (ROOT, TIP))
+    for k, field in ((3, "d2cl_dre2"), (5, "d2cd_dre2")):
+        blend = (1 - w) * root[k] + w * tip[k]
+        np.testing.assert_allclose(np.imag(blend) / H, getattr(s, field), rtol=1e-12, atol=1e-30)
+    assert np.max(np.abs(s.d2cd_dre2 * reynolds**2)) > 1e-4
+
+
 def test_values_and_radial_slope_are_continuous_at_the_stations(polar):
     for x in FRACTIONS:
         left = polar.evaluate(0.08, 5e5, radial_fraction=x - 1e-9)

@@ -42,7 +42,7 @@ def test_fixed_reynolds_polar_is_the_base_polar_at_that_reynolds_number():
     np.testing.assert_array_equal(values.dcl_dalpha, base.dcl_dalpha)
     for field in ("dcl_dre", "dcd_dre"):
         np.testing.assert_array_equal(getattr(values, field), 0.0)
-    for field in ("d2cl_dalpha_dre", "d2cd_dalpha_dre"):
+    for field in ("d2cl_dalpha_dre", "d2cd_dalpha_dre", "d2cl_dre2", "d2cd_dre2"):
         np.testing.assert_array_equal(getattr(second, field), 0.0)
 
 

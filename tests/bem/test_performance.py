@@ -119,3 +119,16 @@ def test_blade_without_area_has_zero_blade_loading():
     prob.set_val("dthrust_dr", np.zeros((NN, NR)))
     prob.run_model()
     assert np.all(prob.get_val("blade_loading") == 0.0) and np.all(prob.get_val("solidity") == 0.0)
+
+
+def test_values_without_partials_are_the_same():
+    # A run without derivatives (RotorPerformanceComp.compute) evaluates the same formulas.
+    from bild_mdo.bem.performance import rotor_performance
+
+    args = (np.array([900.0, -50.0]), np.array([120.0, 30.0]), np.array([0.2, 0.0]), np.array([0.0, 20.0]),
+            np.array([800.0, 1200.0]), np.array([1.5, 1.0]), np.array([1.225, 1.0]), B)
+    full, _ = rotor_performance(*args)
+    values, partials = rotor_performance(*args, partials=False)
+    assert partials is None
+    for name, value in full.items():
+        np.testing.assert_array_equal(values[name], value)

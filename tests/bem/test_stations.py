@@ -120,3 +120,13 @@ def test_stations_inside_the_hub_raise_naming_node_and_station(centred, hub, nod
                    centred_annuli=centred)
     with pytest.raises(om.AnalysisError, match=rf"node {node}, station {station} lies inside the hub"):
         _run(hub_radius=hub, **options)
+
+
+@pytest.mark.parametrize("centred", [False, True])
+def test_midpoint_stations_of_a_hub_beyond_the_tip_raise_naming_the_first_station(centred):
+    # Node 1: hub 1.2 m outside its 1.0 m tip, so the width (R - r_hub)/nr < 0 puts every midpoint inside the hub;
+    # without centring the first (r_0 = r_hub + width/2) is named; centred, r_0 - dr/2 = r_hub is on the hub
+    # edge (allowed to round-off) and r_1 - dr/2 = r_hub + width is the first inside it (hand derivation).
+    station = 1 if centred else 0
+    with pytest.raises(om.AnalysisError, match=rf"node 1, station {station} lies inside the hub"):
+        _run(hub_radius=[0.1, 1.2, 0.15], centred_annuli=centred)

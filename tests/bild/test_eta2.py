@@ -224,3 +224,34 @@ def test_solve_eta2_broadcasts_and_validates():
         solve_eta2(np.array([-1.0, 2.0]), 50.0, 10.0, 1.0, 0.01)
     with pytest.raises(ValueError, match="cd_star"):
         solve_eta2(10.0, 50.0, 10.0, 1.0, 0.0)
+
+
+def test_taylor_coefficients_expand_the_quartic_about_eta_one():
+    # P(1 - t) = lam**4 sum_k q_k t**k (Eq. (27) expanded about eta = 1; the solve's polynomial), checked against
+    # the product form of bild_mdo.bild.quartic at t in [0, 1/2] to round-off of P's terms; q0 is P(1) of the
+    # closed form (h(1) = -lam V_x, quartic module docstring), zero in hover.
+    from bild_mdo.bild.eta2 import _taylor_coefficients
+
+    v_x, v_t, lam, s = random_domain(20_000, seed=15)
+    q = _taylor_coefficients(v_x, v_t, lam, s)
+    for t in (0.0, 0.05, 0.2, 0.37, 0.5):
+        value = lam**4 * sum(coefficient * t**k for k, coefficient in enumerate(q))
+        n_term, m_term, b, c = qc.physical_factor_terms(1.0 - t, v_x, v_t, lam, s)
+        terms = n_term**2 + np.abs(2 * b * n_term * m_term) + np.abs(c) * m_term**2 + (v_t**2 + v_x**2 + lam**2)**2
+        assert np.max(np.abs(value - qc.quartic(1.0 - t, v_x, v_t, lam, s)) / terms) < 1e-12
+    p1 = -lam * v_x * (v_x + 2 * s * v_t) * (lam + v_x + s * v_t)
+    np.testing.assert_allclose(lam**4 * q[0], p1, rtol=1e-12, atol=0.0)
+    assert np.all(q[0][v_x == 0.0] == 0.0)
+
+
+def test_safeguarded_fallback_finds_the_same_root():
+    # Every element solved by the fast path (explicit start, Newton, product-form step) and again by the bracketed
+    # fallback alone (_solve_tail from eta = 1/2): the two roots of the same function agree to round-off.
+    from bild_mdo.bild.eta2 import _solve, _solve_tail
+
+    v_x, v_t, lam, s = random_domain(20_000, seed=16)
+    eta, done = _solve(v_x, v_t, lam, s, v_x.shape)
+    again, converged = _solve_tail(np.full(v_x.size, 0.75), np.zeros(v_x.size, dtype=bool), v_x, v_t, lam, s,
+                                   v_x.shape)
+    assert np.all(done) and np.all(converged)
+    np.testing.assert_allclose(eta, again, rtol=0.0, atol=8 * np.finfo(float).eps)

@@ -5,7 +5,14 @@ import numpy as np
 import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
-from bild_mdo.bild.local_section_point import force_factors, point_derivatives, solve_local_point
+from bild_mdo.airfoil.polar import PolarValues
+from bild_mdo.bild.local_section_point import (
+    _first_terms,
+    _gradient,
+    force_factors,
+    point_derivatives,
+    solve_local_point,
+)
 from bild_mdo.bild.local_section_point_comp import (
     LoadReynoldsComp,
     LocalSectionPointComp,
@@ -20,6 +27,32 @@ from tests.bild.conftest import NN, NR, state
 # Inflow angles and load Reynolds numbers Q = Re C of stations of the paper's rotors (Re 1e5..1e6).
 PHI = np.array([0.05, 0.12, 0.15, 0.2, 0.35, 0.5])
 LOAD = np.array([8e4, 1.2e5, 1.6e5, 2.5e5, 5e5, 1e6])
+# A station whose point (torque form, NACA 4412 surrogate) lies 7.5e-6 in ln Re past the table's top edge
+# Re = 2e6, where the second Reynolds derivatives jump (the continuation past the table is C^1): a central
+# difference in ln Re of half step 1e-4 (the former way to get them) straddled the jump.
+EDGE_PHI, EDGE_LOAD = 0.4066844281780629, 755377.8671370973
+H = 1e-30
+
+
+class _ComplexSafe:
+    """Test only: the polar's first derivatives at complex ``(alpha, Re)`` (``evaluate`` carries only ``cl, cd``)."""
+
+    def __init__(self, polar):
+        self.polar = polar
+
+    def evaluate(self, alpha, reynolds):
+        alpha, reynolds = np.broadcast_arrays(np.asarray(alpha, dtype=complex), np.asarray(reynolds, dtype=complex))
+        if isinstance(self.polar, AnalyticPolar):
+            return PolarValues(*self.polar._all(alpha, reynolds)[0])
+        (cl, cl_a, cl_re), (cd, cd_a, cd_re) = self.polar._compute(alpha, reynolds, second=False)
+        return PolarValues(cl, cd, cl_a, cl_re, cd_a, cd_re)
+
+
+def _residuals(polar, alpha, reynolds, phi, load, chord_form):
+    """``(G, h)`` of the module docstring, complex-step safe in every argument (through :class:`_ComplexSafe`)."""
+    p, q = force_factors(phi, chord_form)
+    t = _first_terms(_ComplexSafe(polar), alpha, reynolds, p, q)
+    return t.g, reynolds * t.force - load
 
 
 @pytest.fixture(autouse=True)
@@ -107,6 +140,59 @@ def test_implicit_function_derivatives_match_a_re_solve():
     np.testing.assert_allclose(derivs.dre_dq * LOAD, (up.reynolds - down.reynolds) / (2 * h), rtol=1e-5)
 
 
+CASES = [("naca4412", "thrust", PHI, LOAD), ("naca4412", "torque", PHI, LOAD),
+         ("naca4412", "torque", np.array([EDGE_PHI]), np.array([EDGE_LOAD])),
+         ("analytic", "thrust", PHI, LOAD), ("analytic", "torque", PHI, LOAD)]
+
+
+@pytest.mark.parametrize("name, chord_form, phi, load", CASES, ids=[f"{c[0]}-{c[1]}-{c[2].size}" for c in CASES])
+def test_implicit_function_derivatives_by_complex_step(name, chord_form, phi, load):
+    # Hand-checkable identity: the Jacobian of (G, h) in (alpha, Re, phi, Q) by complex step of the polar's first
+    # derivatives (no second derivative of the polar is used), then d(alpha, Re)/dp = -J**-1 (G_p, h_p).  It must
+    # equal the exact _gradient terms (the polar's second derivatives, d2/dRe2 included) and point_derivatives.
+    polar = default_polar() if name == "naca4412" else AnalyticPolar(reynolds_exponent=0.2)
+    point = solve_local_point(polar, phi, load, chord_form)
+    derivs = point_derivatives(polar, point, phi, chord_form)
+    alpha, re = point.alpha, point.reynolds
+    steps = {"alpha": (H, 0, 0, 0), "re": (0, H * re, 0, 0), "phi": (0, 0, H, 0), "q": (0, 0, 0, H * load)}
+    jac = {}
+    for key, (da, dr, dphi, dq) in steps.items():
+        g, h = _residuals(polar, alpha + 1j * da, re + 1j * dr, phi + 1j * dphi, load + 1j * dq, chord_form)
+        unit = {"re": re, "q": load}.get(key, 1.0)   # relative steps in Re and Q; derivatives per unit Re, Q
+        jac[key] = (g.imag / H / unit, h.imag / H / unit)
+    p, q = force_factors(phi, chord_form)
+    g_a, g_r, g_phi, _ = _gradient(polar, alpha, re, p, q, _first_terms(polar, alpha, re, p, q))
+    tol = dict(rtol=1e-12, atol=1e-14 * np.max(np.abs(g_a)))
+    np.testing.assert_allclose(g_a, jac["alpha"][0], **tol)
+    np.testing.assert_allclose(g_r * re, jac["re"][0] * re, **tol)
+    np.testing.assert_allclose(g_phi, jac["phi"][0], **tol)
+    for k in range(phi.size):
+        j = np.array([[jac["alpha"][0][k], jac["re"][0][k]], [jac["alpha"][1][k], jac["re"][1][k]]])
+        for param, (d_alpha, d_re) in (("phi", (derivs.dalpha_dphi, derivs.dre_dphi)),
+                                       ("q", (derivs.dalpha_dq, derivs.dre_dq))):
+            want = -np.linalg.solve(j, [jac[param][0][k], jac[param][1][k]])
+            # Exact second derivatives: agreement to ~1e-14; the former central difference in ln Re was off by
+            # 1e-11 inside the table and by 25 % at the edge case.
+            assert d_alpha[k] == pytest.approx(want[0], rel=1e-12)
+            assert d_re[k] == pytest.approx(want[1], rel=1e-12)
+
+
+def test_derivatives_just_past_the_table_edge_match_a_re_solve():
+    # The point of EDGE_PHI, EDGE_LOAD lies just past Re = 2e6; steps of 1e-7 in phi move Re by about 0.5,
+    # so the re-solves stay on its side of the edge (test only).
+    polar = default_polar()
+    phi, load = np.array([EDGE_PHI]), np.array([EDGE_LOAD])
+    point = solve_local_point(polar, phi, load, "torque")
+    assert 0.0 < point.reynolds[0] / polar.reynolds[-1] - 1.0 < 1e-4
+    derivs = point_derivatives(polar, point, phi, "torque")
+    h = 1e-7
+    up, down = solve_local_point(polar, phi + h, load, "torque"), solve_local_point(polar, phi - h, load, "torque")
+    assert np.all(down.reynolds > polar.reynolds[-1])
+    np.testing.assert_allclose(derivs.dalpha_dphi, (up.alpha - down.alpha) / (2 * h), rtol=1e-6)
+    np.testing.assert_allclose(derivs.dcl_dphi, (up.cl - down.cl) / (2 * h), rtol=1e-6)
+    np.testing.assert_allclose(derivs.dre_dphi, (up.reynolds - down.reynolds) / (2 * h), rtol=1e-6)
+
+
 def test_reynolds_independent_polar_gives_the_maximum_lift_to_drag_point():
     # With no Re dependence (D = 0, C_Re = 0) the condition is A = 0: the max-L/D point (module docstring).
     polar = AnalyticPolar()
@@ -121,18 +207,21 @@ def test_invalid_load_is_one_line():
 
 
 def test_section_point_partials():
+    # The component carries complex inputs with its own implicit-function derivatives (the solve is not
+    # complex-capable), so complex step checks the wiring here (rows, columns, the (nn, nr) layout, the floor of
+    # unloaded stations); their values are checked by test_implicit_function_derivatives_by_complex_step.
     rng = np.random.default_rng(3)
     values = {"phi": 0.05 + 0.4 * rng.random((NN, NR)),
               "load_reynolds": np.exp(np.log(1e5) + 2.3 * rng.random((NN, NR)))}
     check_component_partials(LocalSectionPointComp(num_nodes=NN, num_radial=NR, polar=default_polar()), values,
-                             atol=1e-10, rtol=1e-8)
+                             atol=1e-12, rtol=1e-12)
 
 
 @pytest.mark.parametrize("chord_form", ["thrust", "torque"])
 def test_reference_section_point_partials(chord_form):
     values = {"phi_ref": np.array([0.1, 0.3, 0.5]), "reynolds_ref": np.array([4e5, 8e5, 1.5e6])}
     check_component_partials(ReferenceSectionPointComp(num_nodes=NN, polar=default_polar(), chord_form=chord_form),
-                             values, atol=1e-10, rtol=1e-8)
+                             values, atol=1e-12, rtol=1e-12)
 
 
 def test_reference_point_is_a_minimum_of_its_own_path():
@@ -152,6 +241,26 @@ def test_reference_point_is_a_minimum_of_its_own_path():
     station = solve_local_point(polar, phi, load)
     np.testing.assert_allclose(station.alpha, point.alpha, atol=1e-9)
     np.testing.assert_allclose(station.reynolds, reynolds, rtol=1e-9)
+
+
+@pytest.mark.parametrize("chord_form", ["thrust", "torque"])
+def test_reference_point_derivatives_by_complex_step(chord_form):
+    # At fixed Re the reference point solves G(alpha, Re; phi) = 0: dalpha/dp = -G_p / G_alpha, with G's
+    # Jacobian here by complex step of the polar's first derivatives (hand-checkable identity).  Reynolds
+    # numbers inside the NACA 4412 table, at its top edge 2e6 and past both edges.
+    polar = default_polar()
+    phi = np.array([0.1, 0.3, 0.5, 0.2, 0.25, 0.15])
+    reynolds = np.array([4e5, 8e5, 1.5e6, 2e6, 2e6 * (1 + 1e-6), 3e4])
+    point = solve_reference_point(polar, phi, reynolds, chord_form)
+    load = np.zeros_like(phi)  # h is not used at fixed Re
+    g_a = _residuals(polar, point.alpha + 1j * H, reynolds, phi, load, chord_form)[0].imag / H
+    g_r = _residuals(polar, point.alpha, reynolds + 1j * H * reynolds, phi, load, chord_form)[0].imag / H
+    g_phi = _residuals(polar, point.alpha, reynolds, phi + 1j * H, load, chord_form)[0].imag / H
+    np.testing.assert_allclose(point.dalpha_dre * reynolds, -g_r / g_a, rtol=1e-12)
+    # G = C E(alpha, Re) (expand A B - Re D C_alpha with C = p cl + q cd): at fixed Re the root does not move
+    # with phi, so both sides are round-off.
+    np.testing.assert_allclose(point.dalpha_dphi, -g_phi / g_a, atol=1e-13)
+    assert np.min(np.abs(point.dalpha_dre * reynolds)) > 1e-4
 
 
 def test_reference_reynolds_in_the_band_between_two_branches():

@@ -32,3 +32,18 @@ def test_loss_factor_scales_both_loads(kind):
     assert np.all((f > 0) & (f <= 1)) and np.all(np.argmin(f, axis=1) == NR - 1)
     for name in ("dthrust_dr", "dtorque_dr"):
         np.testing.assert_allclose(with_loss.get_val(name), f * without.get_val(name), rtol=1e-14)
+
+
+@pytest.mark.parametrize("loss_model", ["tip_hub", "tip", "none"])
+def test_loss_factor_of_compute_is_prandtls(loss_model):
+    # compute evaluates F alone (_loss_factor); it is the F of bild_mdo.bem.prandtl.prandtl_loss (same floor and
+    # clips) to round-off, over inflow angles of both signs, near zero (floored) and stations at hub and tip.
+    from bild_mdo.bem.prandtl import prandtl_loss
+    from bild_mdo.bild.momentum_loads import _loss_factor
+
+    rng = np.random.default_rng(3)
+    phi = np.concatenate([rng.uniform(-1.5, 1.5, 2000), [0.0, 1e-14, -1e-14, 1e-6]])
+    radius, hub = 1.2, 0.2
+    r = np.concatenate([rng.uniform(hub, radius, 2000), [hub, radius, 0.5 * (hub + radius), radius * (1 - 1e-12)]])
+    value = _loss_factor(phi, r, radius, hub, 3, loss_model, np.empty(phi.size))
+    np.testing.assert_allclose(value, prandtl_loss(phi, r, radius, hub, 3, loss_model).F, rtol=4e-16, atol=0.0)

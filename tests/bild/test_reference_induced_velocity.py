@@ -31,3 +31,15 @@ def test_partials_and_bem_balance(kind, loss_model):
     # ... and the torques (Eq. 2 with F against Eq. 6).
     np.testing.assert_allclose(2 * np.pi * values["rho"] * u_axial * u_t * r ** 2 * f,
                                0.5 * c_theta * values["rho"] * w2 * 3 * c * r, rtol=1e-11)
+
+
+def test_one_design_matches_the_batch(kind):
+    # Designs do not interact: one design (run on NumPy scalars) has the velocities it has in a batch.
+    values = state(kind)
+    values["phi_ref"] = check_component_partials(ReferenceStationComp(num_nodes=NN), values).get_val("phi_ref")
+    batch = check_component_partials(ReferenceInducedVelocityComp(num_nodes=NN), values)
+    for k in range(NN):
+        one = check_component_partials(ReferenceInducedVelocityComp(num_nodes=1),
+                                       {name: np.atleast_1d(value)[[k]] for name, value in values.items()})
+        for name in ("u_axial_ref", "u_theta_ref"):
+            np.testing.assert_allclose(one.get_val(name), batch.get_val(name)[[k]], rtol=1e-14)

@@ -34,3 +34,21 @@ def test_negative_axial_velocity_raises():
     values["v_axial"] = -values["v_axial"]
     with pytest.raises(om.AnalysisError, match="v_axial >= 0"):
         check_component_partials(ReferenceStationComp(num_nodes=NN), values)
+
+
+def test_one_design_and_the_bracketed_search_give_the_batch_root(kind, monkeypatch):
+    # Designs do not interact: one design (run on NumPy scalars) has the root and partials it has in a
+    # batch; and the bracketed search, which takes every node the Newton start does not accept, finds the
+    # same root (one root in region 1, ReferenceStationComp._solve_region_one).
+    from bild_mdo.bild import reference_station
+
+    values = state(kind)
+    batch = check_component_partials(ReferenceStationComp(num_nodes=NN), values)
+    phi = batch.get_val("phi_ref")
+    for k in range(NN):
+        one = check_component_partials(ReferenceStationComp(num_nodes=1),
+                                       {name: np.atleast_1d(value)[[k]] for name, value in values.items()})
+        np.testing.assert_allclose(one.get_val("phi_ref"), phi[[k]], rtol=1e-14)
+    monkeypatch.setattr(reference_station, "_MAX_PASSES", 0)
+    bracketed = check_component_partials(ReferenceStationComp(num_nodes=NN), values)
+    np.testing.assert_allclose(bracketed.get_val("phi_ref"), phi, rtol=1e-12)

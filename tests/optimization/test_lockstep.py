@@ -12,10 +12,12 @@ import numpy as np
 import openmdao.api as om
 import pytest
 
-from bild_mdo.optimization.batch_model import BatchModel
-from bild_mdo.optimization.problem import build_optimization_problem
+from bild_mdo.bem.flow_states import PROPELLER
+from bild_mdo.optimization.batch_model import BatchModel, CaseSpec, Evaluation
+from bild_mdo.optimization.lockstep import TRIMMED_START_TOLERANCE, CaseRun
+from bild_mdo.optimization.problem import build_optimization_problem, set_optimization_case
 from bild_mdo.optimization.result import ANALYSIS_FAILED
-from bild_mdo.optimization.run import optimize_rotor
+from bild_mdo.optimization.run import optimize_rotor, trim_to_thrust
 from bild_mdo.verification.case_functions import bild_batch
 from bild_mdo.verification.cases import SweepSpec
 
@@ -114,3 +116,50 @@ def test_a_failing_analysis_fails_its_case_alone(sweep_cases, solo, monkeypatch)
     assert "stand-in analysis failure" in results[1].status
     for k in (0, 2, 3):
         _assert_same(results[k], solo[k])
+
+
+# levels=3 cases 0 = (J 0, R 0.5 m, 0 m, c_ref 0.08 m) and 8 = (0, 0.5 m, 3000 m, 0.22 m): small hovering rotors
+# whose root stations are in deep stall, where the BEM inflow angle can jump between roots
+# (bild_mdo.optimization.lockstep.CaseRun, "Worse than the start").
+STALLED_ROOT_CASE_IDS = (0, 8)
+
+
+def test_stalled_root_cases_keep_solo_results_and_beat_trimmed_bild():
+    cases = SweepSpec(levels=3).cases(STALLED_ROOT_CASE_IDS)
+    designs = bild_batch(cases)
+    prob = build_optimization_problem(optimizer="slsqp")
+    alone, trimmed = [], []
+    for args, bild in zip(zip(*_columns(cases, designs)), designs):
+        args = [float(a) for a in args]
+        alone.append(optimize_rotor(*args, problem=prob, restarts=1, bild_chord=bild["chord"],
+                                    bild_twist=bild["twist"]))
+        # BILD's own design trimmed to T* by collective pitch: a feasible design, so an upper bound on the optimum.
+        set_optimization_case(prob, *args, bild_chord=bild["chord"], bild_twist=bild["twist"])
+        trim_to_thrust(prob)
+        trimmed.append(float(prob.get_val("energy_loss")[0]))
+    results = optimize_rotor(*_columns(cases, designs), optimizer="slsqp", restarts=1, **_geometry(designs))
+    for result, solo_result, bound in zip(results, alone, trimmed):
+        _assert_same(result, solo_result)
+        # The tolerance of the verification's optimality check (bild_mdo.verification.optimality).
+        assert result.performance["energy_loss"] <= bound * (1.0 + TRIMMED_START_TOLERANCE), result.status
+
+
+def _jump_model(x_chord, x_twist, gradients, previous_phi):
+    """Stand-in model with a jump: E = c^2 + t^2 + (1 if c > 0.4), constraint c + t - 1 = 0 (one station)."""
+    c, t = float(x_chord[0]), float(x_twist[0])
+    energy = c**2 + t**2 + (1.0 if c > 0.4 else 0.0)
+    return Evaluation(energy, c + t - 1.0, {"energy_loss": energy}, x_chord.copy(), x_twist.copy(),
+                      np.full(1, PROPELLER), np.array([2.0 * c, 2.0 * t]), np.array([1.0, 1.0]), np.zeros(1))
+
+
+def test_an_optimum_worse_than_the_trimmed_start_is_restarted_from_it():
+    # Hand derivation: from (c, t) = (0.3, 0.5) SLSQP heads for the smooth optimum (0.5, 0.5), past the jump,
+    # E = 1.5.  The start trimmed by t alone is (0.3, 0.7), E = 0.58; from there the best feasible design
+    # below the jump is the limit c -> 0.4, t = 0.6: E = 0.16 + 0.36 = 0.52.
+    spec = CaseSpec({}, np.array([0.3]), np.array([0.5]), (np.array([0.0]), np.array([1.5])))
+    settings = {"scaling": "hessian", "parameterization": "stations", "order": 4, "tol": 1e-8, "maxiter": 100,
+                "restarts": 0, "num_radial": 1}
+    result = CaseRun(spec, _jump_model, settings, speculate=False).solve()
+    assert result.converged and "restarted from the initial design trimmed to the thrust" in result.status
+    assert result.performance["energy_loss"] == pytest.approx(0.52, abs=1e-6)
+    assert result.thrust_error == pytest.approx(0.0, abs=1e-8)

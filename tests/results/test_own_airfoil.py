@@ -120,6 +120,7 @@ def test_spanwise_set_round_trips_through_json(stored_xfoil, capsys):
     # Each station takes its own airfoil's max-L/D point: cl* varies along the span.
     assert np.ptp(rotor.cl_star) > 0.01
     _same_analysis(stored_xfoil / "blade_spanwise.json", rotor)
-    # The command line and the Python snippet make the same blade.
+    # The command line and the Python snippet make the same blade, to round-off: the max-L/D solve starts
+    # from the polar's table warmed by earlier queries, so its last bits can depend on what ran before.
     cli_blade = off_design_sweep(stored_xfoil / "blade.json", advance_ratios=[0.5])
-    assert cli_blade.thrust[0] == off_design_sweep(rotor, advance_ratios=[0.5]).thrust[0]
+    assert cli_blade.thrust[0] == pytest.approx(off_design_sweep(rotor, advance_ratios=[0.5]).thrust[0], rel=1e-12)

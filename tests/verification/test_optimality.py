@@ -136,3 +136,17 @@ def test_table3_text_carries_the_optimality_line(rows, trim):
     table = dataclasses.replace(table, optimality=optimality_check(rows, trim=trim))
     text = format_table3(table)
     assert text.splitlines()[-3].startswith("Optimum is an optimum: 0 of 16 cases")
+
+
+def test_energy_excess_of_the_trimmed_bild_design(rows, trim):
+    # By construction: optimum energies E_opt = E_trim / (1 + e_k) give the excesses (E_trim - E_opt)/E_opt = e_k.
+    excess = np.linspace(0.0, 0.03, len(rows))
+    built = [dict(r, opt_energy_loss=e_trim / (1.0 + e)) for r, e_trim, e in zip(rows, trim.energy_loss, excess)]
+    check = optimality_check(built, trim=trim, section_point="local")
+    assert check.mean_excess == pytest.approx(excess.mean(), rel=1e-12)
+    assert check.max_excess == pytest.approx(0.03, rel=1e-12)
+    assert check.max_excess_case_id == rows[-1]["case_id"]
+    assert (f"BILD (local section point) trimmed to T*: energy excess over the optimum (E_BILD,trimmed - E_opt)/E_opt "
+            f"mean +{100.0 * excess.mean():.3f} %, worst +3.000 % (case {rows[-1]['case_id']}).") in check.summary()
+    # Without a section point the summary is the paper setting's, without the line.
+    assert "energy excess" not in optimality_check(built, trim=trim).summary()
