@@ -96,12 +96,10 @@ def _add_ideal_loading(group, ideal_loading, node, loss, checked, reference_in):
 class BILDGroup(om.Group):
     """Ideal chord and twist of a rotor and its performance, by the BILD method.
 
-    Algorithm 1 of the paper as a feed-forward chain on RunOnce (the two
-    implicit components, the reference-station BEM solve and the quartic for
-    ``eta2``, solve themselves and provide exact linear solves).  The group's
-    linear solver is ``DirectSolver(assemble_jac=True)`` unless the user
-    sets another after construction: total derivatives in either mode then cost one
-    sparse LU and one back-substitution per seed::
+    Algorithm 1 of the paper as a feed-forward chain on RunOnce (implicit components solve themselves;
+    ``section_point='local'`` and ``thrust_target=True`` add Newton solves).  The linear solver is
+    ``DirectSolver(assemble_jac=True)`` unless the user sets another after construction: totals in
+    either mode cost one sparse LU and one back-substitution per seed::
 
         atmosphere (ISA)            altitude -> rho, mu, a
         [advance_ratio]             J, rpm, R -> V_x            (input_mode='advance_ratio')
@@ -112,7 +110,7 @@ class BILDGroup(om.Group):
         reference_station           BEM inflow angle at r_ref with c_ref (implicit)     step 2
         reference_induced_velocity  u_axial, u_theta at r_ref, Eq. (8)                  step 2
         ideal_loading               lambda, Eq. (22) (or exact, option ideal_loading)   step 3
-        eta2                        quartic, Eq. (27) (implicit)                        step 4
+        eta2                        quartic, Eq. (27) (implicit; exact: ExactEta2Comp)  step 4
         induced_velocity            u_axial, u_theta, Eqs. (26), (24)                   step 5
         inflow_angle                phi, W, twist, Eq. (30)                             step 7
         momentum_loads              F, dT/dr, dQ/dr, dE/dr, Eqs. (1), (2), (12)         step 6

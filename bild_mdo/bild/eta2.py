@@ -321,8 +321,8 @@ class Eta2Comp(om.ImplicitComponent):
     has the units of ``P`` and makes ``R`` O(1) at hub and tip alike; it is
     included in the partials.
 
-    ``solve_nonlinear`` finds the unique root in (0.5, 1) by a vectorised,
-    bracketed, safeguarded Newton solve (:func:`solve_eta2`).  In hover
+    ``solve_nonlinear`` finds the unique root in (0.5, 1) (:func:`solve_eta2`:
+    Newton steps from an explicit start, the bracketed solve as fallback).  In hover
     (``V_x == 0``) a station is loaded only if ``lam > V_theta C_d/(2 C_l)``;
     otherwise it is unloaded and ``eta2 = 1`` (``u_axial = u_theta = 0``), the
     limit of the root as ``V_x -> 0+``, which is still a simple root of ``P``,

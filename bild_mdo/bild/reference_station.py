@@ -237,6 +237,10 @@ class ReferenceStationComp(om.ImplicitComponent):
             raise om.AnalysisError(f"{self.msginfo}: the reference station needs a positive rotor speed")
         if (real["v_axial"] < 0.0).any():
             raise om.AnalysisError(f"{self.msginfo}: BILD designs need v_axial >= 0 (Assumption 4)")
+        if self.options["loss_model"] == "tip_hub" and (real["hub_radius"] <= 0.0).any():
+            # The same rule as bild_mdo.bem.prandtl.prandtl_loss (the lean loss factor here does not check).
+            raise ValueError("hub_radius must be positive for loss_model='tip_hub' "
+                             "(use loss_model='tip' for a rotor without hub)")
 
         phi, ok = self._solve_region_one(real)
         if not ok.all():

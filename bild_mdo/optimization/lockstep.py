@@ -65,7 +65,8 @@ DEFAULT_BATCH_SIZE = 64
 _CACHE_POINTS = 8
 
 #: Relative margin of the first-order estimate of the trimmed initial design's objective
-#: (:meth:`CaseRun._worse_than_trimmed_start`) above which the start is trimmed to compare exactly.
+#: (:meth:`CaseRun._worse_than_trimmed_start`): an optimum less than this below the estimate (or above
+#: it) has the start trimmed to compare exactly.
 _TRIM_ESTIMATE_MARGIN = 1.0e-3
 #: An optimum worse than the trimmed initial design by more than this (relative) is restarted from it;
 #: the tolerance of the verification's optimality check (:mod:`bild_mdo.verification.optimality`).
@@ -94,7 +95,9 @@ class CaseRun:
     offset); an optimum worse than the trimmed start by more than
     :data:`TRIMMED_START_TOLERANCE` is followed by one more SLSQP run from
     the trimmed start, and the better converged optimum is kept (``status``
-    says so).  The check uses only the case's own evaluations, so lockstep
+    says so).  A case whose runs all fail to converge (iteration limit, line
+    search) gets the same last run from the trimmed start, whose result is
+    kept if it converges.  The check uses only the case's own evaluations, so lockstep
     and solo runs still agree.
 
     Parameters
@@ -196,32 +199,39 @@ class CaseRun:
             failures.append(status)
         if failures:
             status = f"{status} (after restarts from: {'; '.join(failures)})"
-        if _converged(success, final) and self._worse_than_trimmed_start(final):
+        if final is not None and not _converged(success, final):
+            # Every run failed (iteration limit, line search): the stalled-root cases of issue 11 are
+            # chaotic in their start, so the trimmed start is a genuinely different last try.
+            success, status, iterations, final = self._from_trimmed_start(success, status, iterations, final,
+                                                                          failed=True)
+        elif final is not None and self._worse_than_trimmed_start(final):
             success, status, iterations, final = self._from_trimmed_start(success, status, iterations, final)
         return self._result(success, status, iterations, final)
 
-    def _from_trimmed_start(self, success, status, iterations, final):
-        """One more SLSQP run from the trimmed start if ``final`` is worse than it; the better optimum."""
+    def _from_trimmed_start(self, success, status, iterations, final, failed=False):
+        """One more SLSQP run from the trimmed start if ``final`` is worse than it (or ``failed``); the better."""
         trimmed = self._trimmed_start()
         if trimmed is None:
             return success, status, iterations, final
         bound = trimmed[2].energy_loss_ratio
-        if final.energy_loss_ratio <= bound * (1.0 + TRIMMED_START_TOLERANCE):
+        if not failed and final.energy_loss_ratio <= bound * (1.0 + TRIMMED_START_TOLERANCE):
             return success, status, iterations, final
         worse = f"{100.0 * (final.energy_loss_ratio / bound - 1.0):.2f} %"
+        label = "no run converged" if failed else f"{worse} worse than the trimmed start"
         try:
             again, again_status, spent, x_chord, x_twist = self._attempt(trimmed[0], trimmed[1])
             other = self.point(x_chord, x_twist, False)
         except om.AnalysisError as exc:
-            return success, f"{status} ({worse} worse than the trimmed start; a restart from it failed: {exc})", \
+            return success, f"{status} ({label}; a restart from the trimmed start failed: {exc})", \
                 iterations, final
         iterations += spent
-        if _converged(again, other) and other.energy_loss_ratio < final.energy_loss_ratio:
+        if _converged(again, other) and (failed or other.energy_loss_ratio < final.energy_loss_ratio):
             if count_invalid(other.flow_state):
                 again_status = f"{again_status}; {invalid_flow_text(other.flow_state)}"
-            return again, (f"{again_status} (restarted from the initial design trimmed to the thrust: the first "
-                           f"optimum was {worse} worse than it)"), iterations, other
-        return success, f"{status} ({worse} worse than the trimmed start; a restart from it did no better)", \
+            why = f"the earlier runs ended: {status}" if failed else f"the first optimum was {worse} worse than it"
+            return again, (f"{again_status} (restarted from the initial design trimmed to the thrust: "
+                           f"{why})"), iterations, other
+        return success, f"{status} ({label}; a restart from the trimmed start did no better)", \
             iterations, final
 
     def _worse_than_trimmed_start(self, final):
@@ -234,7 +244,7 @@ class CaseRun:
         if not slope > 0.0:
             return True
         estimate = start.energy_loss_ratio - float(np.sum(start.grad_energy[n:])) / slope * start.thrust_residual
-        return final.energy_loss_ratio > estimate * (1.0 + _TRIM_ESTIMATE_MARGIN)
+        return final.energy_loss_ratio > estimate * (1.0 - _TRIM_ESTIMATE_MARGIN)
 
     def _trimmed_start(self, steps=8):
         """The initial design trimmed to ``T = T*`` by a uniform twist offset (Newton); None if that fails."""

@@ -224,6 +224,15 @@ class ResultsStore:
         version = meta.get("schema_version")
         if version is None or "sweep_fingerprint" not in meta:
             raise sqlite3.DatabaseError(f"the meta table lacks its entries ({sorted(meta)})")
+        # Checked before any upgrade: a store of another sweep is refused untouched.
+        stored = meta.get("sweep_fingerprint")
+        if stored != self.fingerprint:
+            raise StoreError(
+                f"'{self.path}' holds results of a different sweep (fingerprint {stored}, settings "
+                f"{meta.get('sweep_spec')}); this run is fingerprint {self.fingerprint} with settings "
+                f"{json.dumps(self.spec.to_dict(), sort_keys=True)}. Use another --db file for this sweep, "
+                "or rerun with the settings the store was made with to resume it."
+            )
         if version == "1" and self.writer:
             self._upgrade_from_1()
             self._upgrade_from_2()
@@ -233,14 +242,6 @@ class ResultsStore:
             raise StoreError(
                 f"'{self.path}' has results-store schema version {version!r}, this bild-mdo writes version "
                 f"{SCHEMA_VERSION}. Start a new store (another --db path) or use the bild-mdo version that made it."
-            )
-        stored = meta.get("sweep_fingerprint")
-        if stored != self.fingerprint:
-            raise StoreError(
-                f"'{self.path}' holds results of a different sweep (fingerprint {stored}, settings "
-                f"{meta.get('sweep_spec')}); this run is fingerprint {self.fingerprint} with settings "
-                f"{json.dumps(self.spec.to_dict(), sort_keys=True)}. Use another --db file for this sweep, "
-                "or rerun with the settings the store was made with to resume it."
             )
         self._configure()
 

@@ -7,7 +7,7 @@ import pytest
 from bild_mdo.verification.cases import START_KINDS, SweepSpec
 from bild_mdo.verification.starts import START_COLUMNS, combine_starts, start_spread
 from bild_mdo.verification.statistics import format_table3, table3
-from bild_mdo.verification.store import ResultsStore
+from bild_mdo.verification.store import COLUMNS, ResultsStore, row_checksum
 
 
 def _result(energy, twist, chord, converged=True):
@@ -102,3 +102,14 @@ def test_version_2_store_is_upgraded_and_its_rows_stay_intact(tmp_path):
     with ResultsStore(path, spec) as store:
         assert store.meta()["schema_version"] == "3"
         assert store.damaged_ids() == [] and store.rows()[0]["best_start"] is None
+
+
+def test_a_schema_2_row_keeps_its_checksum():
+    # Old rows must stay valid after the upgrade: the start columns, empty, stay out of the checksum.  The
+    # pinned value is what the schema-2 store code (commit 0dc3209, before the start columns) gave this row.
+    old_columns = [(name, kind) for name, kind in COLUMNS if name not in START_COLUMNS]
+    kinds = {"REAL": lambda k: 0.125 * (k + 1), "INTEGER": lambda k: k, "TEXT": lambda k: f"t{k}",
+             "BLOB": lambda k: bytes([k % 256, 7])}
+    row = [kinds[kind.split()[0]](k) for k, (_, kind) in enumerate(old_columns)]
+    assert len(old_columns) == 36
+    assert row_checksum(row + [None] * len(START_COLUMNS)) == "69596242adcbd50e"
