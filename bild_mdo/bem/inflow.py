@@ -4,13 +4,14 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bem.attached_branch import attached_branch, stalled_candidates
 from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
                                         denominator_function, evaluate_section, inflow_angle_guess,
                                         residual_function, section_arguments, section_input_names)
 from bild_mdo.bem.flow_states import (MIRROR_ROOT, NO_SOLUTION, PROPELLER, classify,
                                       declare_flow_state_options, report_invalid)
 from bild_mdo.bem.inflow_residual import force_coefficients
-from bild_mdo.bem.root_finding import solve_bracketed, solve_physical
+from bild_mdo.bem.root_finding import MAX_ITER, RESIDUAL_TOL, solve_bracketed, solve_physical
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -25,7 +26,9 @@ class InflowComp(om.ImplicitComponent):
     :func:`~bild_mdo.bem.root_finding.solve_physical`, CCBlade.jl's region order accepting only
     roots with ``W > 0``; with ``'full'`` :func:`~bild_mdo.bem.root_finding.solve_bracketed`,
     the first sign change anywhere in ``[-pi/2, pi)`` (a root with ``W < 0`` is kept and flagged
-    :data:`~bild_mdo.bem.flow_states.MIRROR_ROOT`).  Each station is then classified
+    :data:`~bild_mdo.bem.flow_states.MIRROR_ROOT`).  Where region 1 holds several roots (stall
+    hysteresis), the attached-flow root, at the largest ``phi``, is taken
+    (:mod:`~bild_mdo.bem.attached_branch`).  Each station is then classified
     (:func:`~bild_mdo.bem.flow_states.classify`).  Where it has no momentum solution
     (:data:`~bild_mdo.bem.flow_states.NO_SOLUTION`) the state equation becomes
     ``phi = atan2(V_x, Omega r)`` (CCBlade's zero-loading fallback; the loads component then
@@ -166,6 +169,12 @@ class InflowComp(om.ImplicitComponent):
             phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs), initial_guess=guess,
                                   previous=previous)
             found = np.ones(nn * nr, dtype=bool)
+        candidates, upper = stalled_candidates(phi, found, kernels)
+        if candidates.size:
+            admissible = (denominator_function(**kernels) if self.options["solve_range"] == "physical"
+                          else lambda x, i: np.ones(np.shape(x), dtype=bool))
+            attached_branch(residual, admissible, phi, candidates, upper, self._describe(inputs),
+                            RESIDUAL_TOL, MAX_ITER)
         phi, found = phi.reshape(shape), found.reshape(shape)
         real_inputs = {name: np.real(inputs[name]) for name in NODE_INPUTS + ("radii", "chord", "twist")}
         fallback = np.real(self._fallback_angle(real_inputs)[0])

@@ -1,0 +1,137 @@
+"""Stall hysteresis of the BEM residual: where region 1 holds several roots, the attached-flow root is taken.
+
+Past stall the lift falls as the angle of attack rises, and the residual of a
+heavily loaded station can have three roots in region 1, ``[eps, pi/2]`` (the
+S-curve of stall hysteresis): an attached-flow root at the largest ``phi``
+(smallest ``alpha``), a stalled root at the smallest ``phi`` and an unstable one
+between.  The bracketed solve returns whichever root its iterates reach, and at
+the fold where the stalled pair is born that choice jumps: levels-10 case 0 of
+the verification (hover, R = 0.5 m, root station at Re ~ 3e4) has its root
+station's ``phi`` jump from 23.8 deg to 21.0 deg when the twist rises by 1e-4 deg
+across 35.455 deg, the thrust jumps with it, and SLSQP spends 400 evaluations at
+the jump.
+
+Rule (deterministic, the same for cold and warm solves): at a region-1 root
+whose angle of attack lies above the section's maximum-L/D angle ``alpha*(Re)``
+(for a polar without second derivatives: where ``dcl/dalpha <= 0`` at the root),
+the residual is scanned on ``phi`` in ``(phi_0, min(pi/2, pitch)]`` (angles of
+attack from the root's down to 0) and the admissible root at the largest ``phi``
+is taken.  Below ``alpha*`` the lift curve rises with ``alpha`` over
+``[0, alpha_0]``, so the residual has no further root there and nothing is
+scanned.  The attached branch is then followed up to the far fold of the S-curve,
+where it ends and the solution must jump to the stalled branch: no root choice
+that is a function of the inputs alone avoids a jump where a branch ends.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from bild_mdo.airfoil.max_lift_to_drag_table import max_lift_to_drag_angle
+from bild_mdo.bem.blade_element import polar_arguments, reynolds_number
+from bild_mdo.bem.root_finding import _check_finite, _solve_in, opposite_signs
+from bild_mdo.constants import RPM_TO_RAD_PER_S
+
+#: Scan points between the stalled root and the upper end (the roots of an S-curve are degrees apart).
+SCAN_POINTS = 24
+#: First scan point above the root, as a fraction of the scan step (so the root itself is not counted).
+_OFFSET = 1.0e-3
+
+
+def attached_branch(residual, admissible, phi, candidates, upper, describe, tol, max_iter):
+    """Replace roots at ``candidates`` by the admissible root at the largest ``phi`` in ``(phi, upper]``.
+
+    Parameters
+    ----------
+    residual, admissible : callable
+        ``residual(phi, idx) -> (R, dR_dphi)`` and ``admissible(phi, idx) -> bool``
+        (:mod:`bild_mdo.bem.root_finding`).
+    phi : ndarray
+        Flat roots (rad), modified in place.
+    candidates : ndarray of int
+        Flat station indices whose roots may lie on a stalled branch.
+    upper : ndarray
+        Upper end of the scan (rad) at ``candidates``.
+    describe, tol, max_iter
+        As in :func:`bild_mdo.bem.root_finding.solve_bracketed`.
+
+    Returns
+    -------
+    ndarray of int
+        The stations whose root was replaced.
+    """
+    lower = phi[candidates]
+    keep = upper > lower
+    idx, lower, upper = candidates[keep], lower[keep], upper[keep]
+    if idx.size == 0:
+        return idx
+    step = (upper - lower) / SCAN_POINTS
+    fractions = np.concatenate([[_OFFSET], np.arange(1, SCAN_POINTS + 1)])
+    x = lower[:, None] + step[:, None] * fractions
+    stations = np.repeat(idx, fractions.size)
+    values = residual(x.ravel(), stations)[0]
+    _check_finite(values, stations, x.ravel(), describe)
+    values = values.reshape(x.shape)
+    change = opposite_signs(values[:, :-1], values[:, 1:]) & (values[:, :-1] != 0.0)
+    has = change.any(axis=1)
+    if not np.any(has):
+        return idx[:0]
+    rows = np.flatnonzero(has)
+    last = (change.shape[1] - 1 - np.argmax(change[:, ::-1], axis=1))[has]
+    sel = idx[has]
+    root = _solve_in(residual, sel, x[rows, last], x[rows, last + 1], values[rows, last], values[rows, last + 1],
+                     None, describe, tol, max_iter)
+    good = admissible(root, sel)
+    phi[sel[good]] = root[good]
+    return sel[good]
+
+
+def stalled_candidates(phi, found, kernels):
+    """Flat stations whose region-1 root lies above the maximum-L/D angle, and the upper end of their scan.
+
+    A polar without second derivatives has no maximum-L/D point here: its stations are
+    candidates where the lift curve does not rise at the root (``dcl/dalpha <= 0``, past its peak).
+
+    Parameters
+    ----------
+    phi, found : ndarray
+        Flat roots (rad) and where a root was found.
+    kernels : dict
+        The flat station inputs of :func:`bild_mdo.bem.blade_element.residual_function`
+        (``v_axial, rpm, radii, chord, twist, rho, mu, radius, speed_of_sound, collective_pitch``,
+        ``polar``).
+
+    Returns
+    -------
+    candidates : ndarray of int
+    upper : ndarray
+        ``min(pi/2, pitch)`` at ``candidates`` (rad): angles of attack down to 0.
+    """
+    pitch = kernels["twist"] + kernels["collective_pitch"]
+    idx = np.flatnonzero(found & (phi > 0.0) & (phi < 0.5 * np.pi) & (pitch - phi > 0.0))
+    if idx.size == 0:
+        return idx, np.empty(0)
+    polar = kernels["polar"]
+    v_axial, radii = kernels["v_axial"][idx], kernels["radii"][idx]
+    v_theta = kernels["rpm"][idx] * RPM_TO_RAD_PER_S * radii
+    reynolds = reynolds_number(v_axial, v_theta, kernels["chord"][idx], kernels["rho"][idx], kernels["mu"][idx])
+    mach, fraction = polar_arguments(polar, np.hypot(v_axial, v_theta), kernels["speed_of_sound"][idx], radii,
+                                     kernels["radius"][idx])
+    alpha = pitch[idx] - phi[idx]
+    if _has_second_derivatives(polar, reynolds, mach, fraction):
+        above = alpha > max_lift_to_drag_angle(polar, reynolds, mach=mach, radial_fraction=fraction)
+    else:
+        above = polar.evaluate(alpha, reynolds, mach=mach, radial_fraction=fraction).dcl_dalpha <= 0.0
+    return idx[above], np.minimum(0.5 * np.pi, pitch[idx[above]])
+
+
+def _first(values):
+    return None if values is None else values[:1]
+
+
+def _has_second_derivatives(polar, reynolds, mach, fraction):
+    """Whether ``polar`` gives second derivatives (which its maximum-L/D point needs): one probe call."""
+    try:
+        polar.second_derivatives(np.zeros(1), reynolds[:1], mach=_first(mach), radial_fraction=_first(fraction))
+    except NotImplementedError:
+        return False
+    return True
