@@ -4,6 +4,7 @@ import pytest
 
 from bild_mdo.bem.flow_states import NO_SOLUTION, PROPELLER, TURBULENT_WAKE
 from bild_mdo.optimization.problem import build_optimization_problem
+from bild_mdo.optimization.result import OptimizationResult
 from bild_mdo.optimization.run import invalid_flow_text, optimize_rotor, trim_to_thrust
 from tests.optimization.conftest import CASE_IDS, case_args
 
@@ -139,3 +140,58 @@ def test_invalid_flow_text_names_the_stations_and_states():
     text = invalid_flow_text([TURBULENT_WAKE, PROPELLER, NO_SOLUTION, PROPELLER])
     assert text.startswith("2 of 4 stations in an invalid BEM flow state")
     assert "stations [0, 2]" in text and "no momentum solution" in text and "turbulent wake" in text
+
+
+def _stand_in(energy, converged=True):
+    """A driver result with a given energy loss (W) for the rule of run._from_trimmed_start."""
+    return OptimizationResult(converged=converged, status="stand-in", iterations=10, model_evaluations=12,
+                              wall_time=1.0, setup_time=0.0, chord=np.zeros(30), twist=np.zeros(30),
+                              performance={"energy_loss": energy}, thrust_error=0.0, optimizer="ipopt",
+                              flow_state=np.full(30, PROPELLER), invalid_stations=0)
+
+
+@pytest.mark.parametrize("first, again, expected, note", [
+    # The trimmed start (energy E_t, from the real model) bounds the optimum: a first optimum 5 % above it is
+    # re-run from it; the re-run at 0.99 E_t is kept, iterations add up.
+    (dict(energy=1.05), dict(energy=0.99), 0.99, "restarted from the initial design trimmed to the thrust"),
+    # A re-run that does no better leaves the first result (and says so).
+    (dict(energy=1.05), dict(energy=1.06), 1.05, "a restart from the trimmed start did no better"),
+    # A run that did not converge is re-run; the converged re-run is kept.
+    (dict(energy=0.9, converged=False), dict(energy=0.99), 0.99, "first run not converged"),
+    # An optimum within the tolerance of the bound is kept without a re-run.
+    (dict(energy=1.0 + 0.5 * 1e-4), None, 1.0 + 0.5 * 1e-4, "stand-in"),
+])
+def test_driver_result_worse_than_the_trimmed_start_is_rerun_from_it(designs, monkeypatch, first, again, expected,
+                                                                   note):
+    # Hand-derived outcomes of the rule (bild_mdo.optimization.run._from_trimmed_start), the drivers' counterpart
+    # of the SLSQP engine's; the driver is a stand-in, the model and trim_to_thrust are real.
+    from bild_mdo.optimization import run
+
+    case, bild = designs["hover"]
+    prob = build_optimization_problem(*case_args(case, bild), bild_chord=bild["chord"], bild_twist=bild["twist"])
+    start_chord = prob.get_val("chord_ratio_cp")[0].copy()
+    start_twist = prob.get_val("twist_cp", units="rad")[0].copy()
+    trim_to_thrust(prob)
+    bound = float(prob.get_val("energy_loss")[0])
+    optimum_twist = start_twist + 0.01      # where the stand-in driver "ended"
+    prob.set_val("twist_cp", optimum_twist, units="rad")
+    calls = []
+
+    def rerun(problem):
+        calls.append(problem.get_val("twist_cp", units="rad")[0].copy())
+        return _stand_in(again["energy"] * bound, again.get("converged", True))
+
+    monkeypatch.setattr(run, "run_optimization", rerun)
+    result = run._from_trimmed_start(prob, _stand_in(first["energy"] * bound, first.get("converged", True)),
+                                     start_chord, start_twist)
+    assert result.performance["energy_loss"] == pytest.approx(expected * bound, rel=1e-12)
+    assert note in result.status
+    assert len(calls) == (0 if again is None else 1)
+    if calls:
+        # The re-run starts from the trimmed start: BILD's twist shifted uniformly (collective pitch).
+        shift = calls[0] - start_twist
+        assert np.ptp(shift) <= 1e-12 and abs(shift[0]) > 0.0
+        assert result.iterations == 20 and result.model_evaluations == 24
+    if result.status == "stand-in" or "did no better" in result.status:
+        # The model is left at the first optimum.
+        np.testing.assert_array_equal(prob.get_val("twist_cp", units="rad")[0], optimum_twist)
