@@ -15,7 +15,7 @@ __version__ = "0.1.0"
 from bild_mdo.airfoil import (AnalyticPolar, CompressiblePolar, MachTabulatedPolar, Polar, SpanwisePolar,
                               TabulatedPolar, get_polar, naca4412, resolve_polar, spanwise_polar)
 from bild_mdo.atmosphere import AtmosphereComp, isa
-from bild_mdo.bem import BEMAnalysisGroup, BEMResult, BEMStateWarning, analyze_rotor
+from bild_mdo.bem import BEMAnalysisGroup, BEMResult, BEMStateWarning, TipMachWarning, analyze_rotor
 from bild_mdo.bild import BILDGroup
 from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
 from bild_mdo.mil import MILGroup, design_mil
@@ -26,7 +26,7 @@ from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_de
 __all__ = [
     "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar", "MultipointRotorGroup", "OffDesignResult", "Polar",
-    "RotorGeometry", "SpanwisePolar", "TabulatedPolar", "__version__", "analyze_rotor", "design_mil", "design_rotor",
+    "RotorGeometry", "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "__version__", "analyze_rotor", "design_mil", "design_rotor",
     "get_polar", "isa", "naca4412", "off_design_sweep", "read_geometry", "resolve_polar", "spanwise_polar",
     "write_geometry",
 ]

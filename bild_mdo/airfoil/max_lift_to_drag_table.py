@@ -307,27 +307,3 @@ def max_lift_to_drag_tabulated(polar, reynolds, derivatives=True):
     point = TabulatedPoint(polar, alpha, v, re_flat, correction, reynolds)
     return point.full() if derivatives or np.iscomplexobj(reynolds) else point
 
-
-def max_lift_to_drag_angle(polar, reynolds, mach=None, radial_fraction=None):
-    """An estimate of the maximum-L/D angle ``alpha*`` (rad) at real Reynolds numbers, without a polar call.
-
-    For a Reynolds-only polar the table's Hermite interpolant (within 1e-6 rad of
-    the exact root where the grid interval is smooth, between the two node values
-    where the largest maximum switches); polars that vary with Mach number or along
-    the span get the exact solve.  For tests against ``alpha*`` (the BEM's stall
-    check, :mod:`bild_mdo.bem.attached_branch`), not for BILD's design point.
-    """
-    re_flat = np.asarray(reynolds, dtype=float).ravel()
-    table = None if (polar.varies_with_mach or polar.varies_along_span) else _table_of(polar)
-    if table is None or not (np.isfinite(re_flat).all() and (re_flat > 0.0).all()):
-        return np.reshape(max_lift_to_drag(polar, reynolds, mach=mach, radial_fraction=radial_fraction).alpha,
-                          np.shape(reynolds))
-    log_re = np.log(re_flat)
-    k = np.floor(log_re / LOG_RE_STEP).astype(np.intp)
-    nodes = np.concatenate([k, k + 1])
-    lo, hi = nodes.min() - table.first, nodes.max() - table.first
-    if lo < 0 or hi >= table.alpha.size or not table.known[nodes - table.first].all():
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            _fill(polar, table, nodes)
-    return np.reshape(_interpolate(table, log_re)[0], np.shape(reynolds))

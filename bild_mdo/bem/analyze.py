@@ -14,7 +14,7 @@ from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.blade_element import evaluate_section
 from bild_mdo.bem.flow_states import ON_INVALID, SOLVE_RANGES
 from bild_mdo.bem.loads import SECTION_OUTPUTS
-from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
+from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS, warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
 
 
@@ -298,6 +298,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
                                  loads=False, partials=False, **node)
     fields["residual"] = values["residual"]
     fields["flow_state"] = np.rint(fields["flow_state"]).astype(int)
+    warn_supersonic_tip(fields["tip_mach"], what="rotor")
     if single:
         fields = {k: v[0] for k, v in fields.items()}
     return BEMResult(**fields)

@@ -13,7 +13,7 @@ the jump.
 
 Rule (deterministic, the same for cold and warm solves): at a region-1 root
 whose angle of attack lies above the section's maximum-L/D angle ``alpha*(Re)``
-(for a polar without second derivatives: where ``dcl/dalpha <= 0`` at the root),
+(``d(cl/cd)/dalpha < 0`` there) or past the lift peak (``dcl/dalpha <= 0``),
 the residual is scanned on ``phi`` in ``(phi_0, min(pi/2, pitch)]`` (angles of
 attack from the root's down to 0) and the admissible root at the largest ``phi``
 is taken.  Below ``alpha*`` the lift curve rises with ``alpha`` over
@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from bild_mdo.airfoil.max_lift_to_drag_table import max_lift_to_drag_angle
 from bild_mdo.bem.blade_element import polar_arguments, reynolds_number
 from bild_mdo.bem.root_finding import _check_finite, _solve_in, opposite_signs
 from bild_mdo.constants import RPM_TO_RAD_PER_S
@@ -88,8 +87,8 @@ def attached_branch(residual, admissible, phi, candidates, upper, describe, tol,
 def stalled_candidates(phi, found, kernels):
     """Flat stations whose region-1 root lies above the maximum-L/D angle, and the upper end of their scan.
 
-    A polar without second derivatives has no maximum-L/D point here: its stations are
-    candidates where the lift curve does not rise at the root (``dcl/dalpha <= 0``, past its peak).
+    The test needs only the polar's value and first derivatives at the root:
+    ``d(cl/cd)/dalpha < 0`` (above the maximum-L/D angle) or ``dcl/dalpha <= 0`` (past the lift peak).
 
     Parameters
     ----------
@@ -117,21 +116,8 @@ def stalled_candidates(phi, found, kernels):
     mach, fraction = polar_arguments(polar, np.hypot(v_axial, v_theta), kernels["speed_of_sound"][idx], radii,
                                      kernels["radius"][idx])
     alpha = pitch[idx] - phi[idx]
-    if _has_second_derivatives(polar, reynolds, mach, fraction):
-        above = alpha > max_lift_to_drag_angle(polar, reynolds, mach=mach, radial_fraction=fraction)
-    else:
-        above = polar.evaluate(alpha, reynolds, mach=mach, radial_fraction=fraction).dcl_dalpha <= 0.0
+    v = polar.evaluate(alpha, reynolds, mach=mach, radial_fraction=fraction)
+    # Past the maximum of cl/cd (d(cl/cd)/dalpha < 0, i.e. alpha > alpha*) or past the lift peak.
+    above = (v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha < 0.0) | (v.dcl_dalpha <= 0.0)
     return idx[above], np.minimum(0.5 * np.pi, pitch[idx[above]])
 
-
-def _first(values):
-    return None if values is None else values[:1]
-
-
-def _has_second_derivatives(polar, reynolds, mach, fraction):
-    """Whether ``polar`` gives second derivatives (which its maximum-L/D point needs): one probe call."""
-    try:
-        polar.second_derivatives(np.zeros(1), reynolds[:1], mach=_first(mach), radial_fraction=_first(fraction))
-    except NotImplementedError:
-        return False
-    return True

@@ -9,7 +9,10 @@ plus its formula and partials in :func:`~bild_mdo.bem.performance.rotor_performa
 """
 from __future__ import annotations
 
+import warnings
 from typing import NamedTuple
+
+import numpy as np
 
 
 class Metric(NamedTuple):
@@ -62,3 +65,24 @@ METRICS_BY_NAME = {metric.name: metric for metric in METRICS}
 PERFORMANCE_OUTPUTS = {metric.name: (metric.units, metric.description) for metric in METRICS}
 #: The metrics the verification sweep stores per method (the paper's Table 3 quantities), in registry order.
 VERIFIED_METRICS = tuple(metric.name for metric in METRICS if metric.verified)
+
+
+class TipMachWarning(UserWarning):
+    """A blade whose tip moves at or above the speed of sound, where its aerodynamic model no longer holds."""
+
+
+def warn_supersonic_tip(tip_mach, what="design"):
+    """One :class:`TipMachWarning` if any ``tip_mach >= 1`` (NaN ignored), naming the first such items.
+
+    Blade-element polars (even Mach-corrected ones) and momentum theory do not
+    represent shocks on the blade, so results past a sonic tip are numbers
+    without physical meaning; they are returned, flagged by this warning.
+    """
+    tip_mach = np.atleast_1d(np.asarray(tip_mach, dtype=float))
+    sonic = np.flatnonzero(tip_mach >= 1.0)
+    if sonic.size == 0:
+        return
+    where = "" if tip_mach.size == 1 else f" of {what}(s) {sonic[:10].tolist()}"
+    warnings.warn(f"tip Mach number {tip_mach[sonic[0]]:.3g}{where} is >= 1: the blade-element polar and "
+                  f"momentum theory do not hold at a supersonic tip; lower the rpm or the radius",
+                  TipMachWarning, stacklevel=3)

@@ -27,6 +27,7 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
+from bild_mdo.bem.metrics import warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
@@ -213,6 +214,8 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         if np.any(bad):
             designs = np.unique(np.nonzero(bad)[0])
             raise om.AnalysisError(f"BILD returned non-finite {name} for design(s) {designs[:10].tolist()}")
+    if "tip_mach" in outputs:
+        warn_supersonic_tip(outputs["tip_mach"])
     if input_mode == "v_axial":
         values["advance_ratio"] = values["v_axial"] / (values["rpm"] * RPM_TO_REV_PER_S * 2.0 * values["radius"])
     else:
