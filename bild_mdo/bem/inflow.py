@@ -49,7 +49,9 @@ class InflowComp(om.ImplicitComponent):
     single root in region 1, so the root, the flow state and the fallback are those of the cold
     solve (to solver tolerance, ``|R| <= 1e-13``); every other station gets the full cold search.
     (Three roots packed closely in region 1, deep stall at high solidity, can escape the check:
-    see the limitation in :func:`~bild_mdo.bem.root_finding.warm_region_one`.)
+    see the limitation in :func:`~bild_mdo.bem.root_finding.warm_region_one`; the attached-branch
+    rule, applied after the warm and the cold solve alike, then takes the same root wherever its
+    scan resolves the three.)
     The first solve is cold; ``warm_start=False`` (default) is the cold solve at every call.
 
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by

@@ -71,7 +71,8 @@ def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, ma
     solidity, about 0.2 % of stations of random rotors with chord/r up to 2, none of the
     propellers of the tests) can lie so close together that none of the samples falls between
     them; there the cold solve's pick depends on its start point and the warm start may return
-    another of the three.
+    another of the three (the BEM inflow component then applies
+    :func:`~bild_mdo.bem.attached_branch.attached_branch` to either).
 
     Parameters
     ----------
