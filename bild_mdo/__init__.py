@@ -25,8 +25,8 @@ from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_de
 
 __all__ = [
     "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
-    "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar", "MultipointRotorGroup", "OffDesignResult", "Polar",
-    "RotorGeometry", "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "__version__", "analyze_rotor", "design_mil", "design_rotor",
-    "get_polar", "isa", "naca4412", "off_design_sweep", "read_geometry", "resolve_polar", "spanwise_polar",
-    "write_geometry",
+    "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
+    "MultipointRotorGroup", "OffDesignResult", "Polar", "RotorGeometry", "SpanwisePolar", "TabulatedPolar",
+    "TipMachWarning", "__version__", "analyze_rotor", "design_mil", "design_rotor", "get_polar", "isa",
+    "naca4412", "off_design_sweep", "read_geometry", "resolve_polar", "spanwise_polar", "write_geometry",
 ]

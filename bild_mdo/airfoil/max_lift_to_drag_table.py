@@ -306,4 +306,3 @@ def max_lift_to_drag_tabulated(polar, reynolds, derivatives=True):
             _put(v, fallback, polar.evaluate(exact.alpha, re_flat[fallback]))
     point = TabulatedPoint(polar, alpha, v, re_flat, correction, reynolds)
     return point.full() if derivatives or np.iscomplexobj(reynolds) else point
-

@@ -120,4 +120,3 @@ def stalled_candidates(phi, found, kernels):
     # Past the maximum of cl/cd (d(cl/cd)/dalpha < 0, i.e. alpha > alpha*) or past the lift peak.
     above = (v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha < 0.0) | (v.dcl_dalpha <= 0.0)
     return idx[above], np.minimum(0.5 * np.pi, pitch[idx[above]])
-
