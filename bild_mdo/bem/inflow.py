@@ -45,13 +45,12 @@ class InflowComp(om.ImplicitComponent):
     (:func:`~bild_mdo.bem.root_finding.warm_region_one`).  In one residual pass it checks that the
     cold solve would search region 1 (sign change between its end points) and brackets the root
     between the previous phi and an end point; the Newton solve from there needs 2-3 passes
-    instead of 5-8.  A station is accepted only where the evaluated signs are consistent with a
-    single root in region 1, so the root, the flow state and the fallback are those of the cold
-    solve (to solver tolerance, ``|R| <= 1e-13``); every other station gets the full cold search.
-    (Three roots packed closely in region 1, deep stall at high solidity, can escape the check:
-    see the limitation in :func:`~bild_mdo.bem.root_finding.warm_region_one`; the attached-branch
-    rule, applied after the warm and the cold solve alike, then takes the same root wherever its
-    scan resolves the three.)
+    instead of 5-8.  Every converged warm root in region 1 is kept (``warm_any_root=True``): the
+    attached-branch rule that follows, as after the cold solve, makes it the root at the largest
+    ``phi`` (below ``alpha*`` no root lies above it; above, the rule scans), which is the cold
+    solve's root after the same rule, so the root, the flow state and the fallback agree with
+    the cold solve's (to solver tolerance, ``|R| <= 1e-13``, wherever the rule's scan resolves
+    the roots); stations where the cold solve would not search region 1 get the full cold search.
     The first solve is cold; ``warm_start=False`` (default) is the cold solve at every call.
 
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
@@ -166,10 +165,11 @@ class InflowComp(om.ImplicitComponent):
         previous = self._previous_phi if self.options["warm_start"] else None
         if self.options["solve_range"] == "physical":
             phi, found = solve_physical(residual, denominator_function(**kernels), flat("v_axial") > 0.0,
-                                        describe=self._describe(inputs), initial_guess=guess, previous=previous)
+                                        describe=self._describe(inputs), initial_guess=guess, previous=previous,
+                                        warm_any_root=True)
         else:
             phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs), initial_guess=guess,
-                                  previous=previous)
+                                  previous=previous, warm_any_root=True)
             found = np.ones(nn * nr, dtype=bool)
         candidates, upper = stalled_candidates(phi, found, kernels)
         if candidates.size:

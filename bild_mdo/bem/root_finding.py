@@ -52,7 +52,7 @@ _SCAN = np.concatenate([np.linspace(-0.5 * np.pi, -BRACKET_EPS, 19),
 _HALLEY_SPAN = 0.1
 
 
-def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER):
+def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER, any_root=False):
     """Warm start: region-1 roots re-solved from a previous solve's roots, where they are the cold solve's roots.
 
     Both cold solves (:func:`solve_physical`, :func:`solve_bracketed`) first test region 1,
@@ -85,6 +85,9 @@ def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, ma
         The cold solve's ``initial_guess``.
     tol, max_iter
         As in :func:`solve_bracketed`.
+    any_root : bool
+        Accept every converged root in region 1, one of several too (for a caller that then
+        chooses among them: the BEM inflow component's attached-branch rule).
 
     Returns
     -------
@@ -130,6 +133,7 @@ def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, ma
     good = result.converged & (np.sign(result.slope) == sign_b) & monotone
     for point, value in ((p[sel], rp[sel]), (c[sel], rc[sel]), (m[sel], rm[sel])):
         good &= (np.abs(value) <= tol) | ((np.sign(value) == sign_b) == (point > x))
+    good = result.converged if any_root else good
     phi[idx[sel[good]]] = x[good]
     accepted[idx[sel[good]]] = True
     return phi, accepted
@@ -272,7 +276,7 @@ def _solve_in(residual, idx, lo, hi, r_lo, r_hi, guess, describe, tol, max_iter)
 
 
 def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,
-                   initial_guess=None, previous=None):
+                   initial_guess=None, previous=None, warm_any_root=False):
     """Solve ``R(phi) = 0`` for a physical (admissible) root at every station, in CCBlade.jl's order.
 
     Regions are tried in the order of :data:`PHYSICAL_REGIONS` (Q3 only where ``forward``), each by
@@ -293,7 +297,7 @@ def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TO
         ``admissible(phi, idx) -> bool array``.
     forward : ndarray of bool
         ``V_x > 0`` per station, shape ``(size,)``.
-    describe, tol, max_iter, initial_guess, previous
+    describe, tol, max_iter, initial_guess, previous, warm_any_root
         As in :func:`solve_bracketed` (``previous``: warm start, see :func:`warm_region_one`; a
         station whose warm root is not admissible is solved cold).
 
@@ -309,7 +313,7 @@ def solve_physical(residual, admissible, forward, describe=None, tol=RESIDUAL_TO
     describe = describe or _default_describe((size,))
     guess = None if initial_guess is None else np.broadcast_to(np.asarray(initial_guess, dtype=float), (size,))
     if previous is not None:
-        phi, warm = warm_region_one(residual, previous, guess, tol=tol, max_iter=max_iter)
+        phi, warm = warm_region_one(residual, previous, guess, tol=tol, max_iter=max_iter, any_root=warm_any_root)
         sel = np.flatnonzero(warm)
         warm[sel] = admissible(phi[sel], sel)
         return _solve_rest(lambda res, sub, desc, g: solve_physical(res, lambda x, i: admissible(x, sub[i]),
@@ -376,7 +380,7 @@ def _scan_admissible(residual, admissible, phi, found, describe, tol, max_iter, 
 
 
 def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL, max_iter=MAX_ITER,
-                    initial_guess=None, previous=None):
+                    initial_guess=None, previous=None, warm_any_root=False):
     """Solve ``R(phi) = 0`` at every station: Ning's bracket search, then the safeguarded Newton solve.
 
     The Newton solve is :func:`bild_mdo.utils.newton.bracketed_newton`, started at
@@ -405,6 +409,7 @@ def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL,
     previous : array_like, optional
         Roots of a previous solve (rad): a warm start (:func:`warm_region_one`), which returns
         the root the cold solve returns; stations it cannot vouch for are solved cold.
+        ``warm_any_root=True`` keeps every converged warm root (``any_root``).
 
     Returns
     -------
@@ -419,7 +424,7 @@ def solve_bracketed(residual, size, describe=None, shape=None, tol=RESIDUAL_TOL,
     describe = describe or _default_describe(shape or (size,))
     if previous is not None:
         guess = None if initial_guess is None else np.broadcast_to(np.asarray(initial_guess, dtype=float), (size,))
-        phi, warm = warm_region_one(residual, previous, guess, tol=tol, max_iter=max_iter)
+        phi, warm = warm_region_one(residual, previous, guess, tol=tol, max_iter=max_iter, any_root=warm_any_root)
         return _solve_rest(lambda res, sub, desc, g: (solve_bracketed(res, sub.size, desc, None, tol, max_iter, g),
                                                       np.ones(sub.size, dtype=bool)),
                            residual, phi, warm, guess, describe)[0]
