@@ -257,7 +257,7 @@ def _from_trimmed_start(prob, result, start_chord, start_twist):
     better converged result is kept and ``status`` says so.  Without it, Ipopt on
     levels 3 of the verification left 1 of 81 cases at its iteration limit and 2
     above BILD's trimmed design (+0.90 %, +0.74 %); with it, 81 of 81 converged,
-    none above (one run each).  The model is left at the returned design.
+    at most one above, by 0.03 % (one run each).  The model is left at the returned design.
     """
     optimum_chord = prob.get_val("chord_ratio_cp")[0].copy()
     optimum_twist = prob.get_val("twist_cp", units="rad")[0].copy()
