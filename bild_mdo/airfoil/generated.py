@@ -15,7 +15,6 @@ the surrogate's Eq. (33) construction needs), Mach 0 and Ncrit 9.
 """
 from __future__ import annotations
 
-import os
 import warnings
 from concurrent.futures import ThreadPoolExecutor
 
@@ -24,6 +23,7 @@ import numpy as np
 from bild_mdo.airfoil import cache
 from bild_mdo.airfoil.sources.coordinates import parse_airfoil
 from bild_mdo.airfoil.sources.polar_data import MIN_POINTS, PolarData
+from bild_mdo.utils.cpus import available_cpus
 
 __all__ = ["DEFAULT_ALPHA_DEG", "DEFAULT_REYNOLDS", "neuralfoil_polars", "xfoil_polars"]
 
@@ -128,7 +128,7 @@ def xfoil_polars(airfoil, reynolds=DEFAULT_REYNOLDS, alpha_deg=DEFAULT_ALPHA_DEG
                 return None
 
         jobs = [(m, r) for m in machs for r in reynolds]
-        workers = max(1, min(len(jobs), os.cpu_count() or 1))
+        workers = max(1, min(len(jobs), available_cpus()))
         with ThreadPoolExecutor(max_workers=workers) as pool:
             polars = list(_progress(pool.map(run, jobs), len(jobs), f"XFOIL {label} (first use; cached)"))
         kept = [p for p in polars if p is not None and p.alpha_deg.size >= MIN_POINTS]

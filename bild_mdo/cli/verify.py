@@ -14,6 +14,7 @@ from bild_mdo.cli.files import AIRFOIL_HELP
 from bild_mdo.io.airfoil import airfoil_text
 from bild_mdo.optimization.problem import OPTIMIZERS
 from bild_mdo.plots.verification import require_matplotlib, save_figures
+from bild_mdo.utils.cpus import available_cpus
 from bild_mdo.airfoil.text import DEFAULT_AIRFOIL, sweep_polar
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.verification.case_functions import bild_batch, optimize_case, optimize_cases, require_optimizer
@@ -60,8 +61,9 @@ def add_verify_arguments(parser):
     """
     parser.add_argument("--levels", type=int, default=10,
                         help="levels per swept axis (J, R, altitude, c_ref), 2 to 15; 10 gives the paper's 10,000 cases")
-    parser.add_argument("--workers", type=int, default=os.cpu_count() or 1,
-                        help="local worker processes for the optimisations (1 = in this process; default: CPU count)")
+    parser.add_argument("--workers", type=int, default=available_cpus(),
+                        help="local worker processes for the optimisations (1 = in this process; default: the CPUs "
+                             "this process may use)")
     parser.add_argument("--scheduler", metavar="ADDR", default=None,
                         help="Dask scheduler address, e.g. tcp://host:8786 (needs bild-mdo[dask]); overrides --workers")
     parser.add_argument("--db", metavar="FILE", default=None,
