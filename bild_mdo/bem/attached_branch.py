@@ -26,9 +26,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from bild_mdo.bem.blade_element import polar_arguments, reynolds_number
-from bild_mdo.bem.root_finding import _check_finite, _solve_in, opposite_signs
-from bild_mdo.constants import RPM_TO_RAD_PER_S
+from bild_mdo.bem.blade_element import _station_setup
+from bild_mdo.bem.root_finding import _scan_admissible
 
 #: Scan points between the stalled root and the upper end (the roots of an S-curve are degrees apart).
 SCAN_POINTS = 24
@@ -38,6 +37,9 @@ _OFFSET = 1.0e-3
 
 def attached_branch(residual, admissible, phi, candidates, upper, describe, tol, max_iter):
     """Replace roots at ``candidates`` by the admissible root at the largest ``phi`` in ``(phi, upper]``.
+
+    The scan and solve are :func:`bild_mdo.bem.root_finding._scan_admissible` (the last
+    sign change of the grid, admissible end points), on a grid per station.
 
     Parameters
     ----------
@@ -52,36 +54,16 @@ def attached_branch(residual, admissible, phi, candidates, upper, describe, tol,
         Upper end of the scan (rad) at ``candidates``.
     describe, tol, max_iter
         As in :func:`bild_mdo.bem.root_finding.solve_bracketed`.
-
-    Returns
-    -------
-    ndarray of int
-        The stations whose root was replaced.
     """
     lower = phi[candidates]
     keep = upper > lower
     idx, lower, upper = candidates[keep], lower[keep], upper[keep]
     if idx.size == 0:
-        return idx
-    step = (upper - lower) / SCAN_POINTS
-    fractions = np.concatenate([[_OFFSET], np.arange(1, SCAN_POINTS + 1)])
-    x = lower[:, None] + step[:, None] * fractions
-    stations = np.repeat(idx, fractions.size)
-    values = residual(x.ravel(), stations)[0]
-    _check_finite(values, stations, x.ravel(), describe)
-    values = values.reshape(x.shape)
-    change = opposite_signs(values[:, :-1], values[:, 1:]) & (values[:, :-1] != 0.0)
-    has = change.any(axis=1)
-    if not np.any(has):
-        return idx[:0]
-    rows = np.flatnonzero(has)
-    last = (change.shape[1] - 1 - np.argmax(change[:, ::-1], axis=1))[has]
-    sel = idx[has]
-    root = _solve_in(residual, sel, x[rows, last], x[rows, last + 1], values[rows, last], values[rows, last + 1],
-                     None, describe, tol, max_iter)
-    good = admissible(root, sel)
-    phi[sel[good]] = root[good]
-    return sel[good]
+        return
+    fractions = np.concatenate([[_OFFSET], np.arange(1, SCAN_POINTS + 1)]) / SCAN_POINTS
+    grid = lower[:, None] + (upper - lower)[:, None] * fractions
+    _scan_admissible(residual, admissible, phi, np.zeros(phi.size, dtype=bool), describe, tol, max_iter, idx,
+                     grid, last=True)
 
 
 def stalled_candidates(phi, found, kernels):
@@ -97,7 +79,7 @@ def stalled_candidates(phi, found, kernels):
     kernels : dict
         The flat station inputs of :func:`bild_mdo.bem.blade_element.residual_function`
         (``v_axial, rpm, radii, chord, twist, rho, mu, radius, speed_of_sound, collective_pitch``,
-        ``polar``).
+        ``num_blades``, ``polar``).
 
     Returns
     -------
@@ -110,11 +92,9 @@ def stalled_candidates(phi, found, kernels):
     if idx.size == 0:
         return idx, np.empty(0)
     polar = kernels["polar"]
-    v_axial, radii = kernels["v_axial"][idx], kernels["radii"][idx]
-    v_theta = kernels["rpm"][idx] * RPM_TO_RAD_PER_S * radii
-    reynolds = reynolds_number(v_axial, v_theta, kernels["chord"][idx], kernels["rho"][idx], kernels["mu"][idx])
-    mach, fraction = polar_arguments(polar, np.hypot(v_axial, v_theta), kernels["speed_of_sound"][idx], radii,
-                                     kernels["radius"][idx])
+    _, _, reynolds, _, mach, fraction = _station_setup(
+        *(kernels[name][idx] for name in ("v_axial", "rpm", "radii", "chord", "twist", "rho", "mu", "radius")),
+        kernels["num_blades"], polar, kernels["speed_of_sound"][idx], kernels["collective_pitch"][idx])
     alpha = pitch[idx] - phi[idx]
     v = polar.evaluate(alpha, reynolds, mach=mach, radial_fraction=fraction)
     # Past the maximum of cl/cd (d(cl/cd)/dalpha < 0, i.e. alpha > alpha*) or past the lift peak.

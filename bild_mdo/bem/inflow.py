@@ -17,6 +17,11 @@ from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 
+def _every_root(phi, idx):
+    """``solve_range='full'`` keeps roots with ``W < 0`` too (flagged as mirror roots): all are admissible."""
+    return np.ones(np.shape(phi), dtype=bool)
+
+
 class InflowComp(om.ImplicitComponent):
     """Inflow angle from the BEM residual with Prandtl loss (paper Eq. 9 generalised by F), and the flow state.
 
@@ -163,20 +168,19 @@ class InflowComp(om.ImplicitComponent):
         guess = inflow_angle_guess(flat("v_axial"), flat("rpm"), flat("radii"), flat("chord"),
                                    flat("twist") + flat("collective_pitch"), self.options["num_blades"])
         previous = self._previous_phi if self.options["warm_start"] else None
+        describe = self._describe(inputs)
         if self.options["solve_range"] == "physical":
-            phi, found = solve_physical(residual, denominator_function(**kernels), flat("v_axial") > 0.0,
-                                        describe=self._describe(inputs), initial_guess=guess, previous=previous,
-                                        warm_any_root=True)
+            admissible = denominator_function(**kernels)
+            phi, found = solve_physical(residual, admissible, flat("v_axial") > 0.0, describe=describe,
+                                        initial_guess=guess, previous=previous, warm_any_root=True)
         else:
-            phi = solve_bracketed(residual, nn * nr, describe=self._describe(inputs), initial_guess=guess,
-                                  previous=previous, warm_any_root=True)
+            admissible = _every_root
+            phi = solve_bracketed(residual, nn * nr, describe=describe, initial_guess=guess, previous=previous,
+                                  warm_any_root=True)
             found = np.ones(nn * nr, dtype=bool)
         candidates, upper = stalled_candidates(phi, found, kernels)
         if candidates.size:
-            admissible = (denominator_function(**kernels) if self.options["solve_range"] == "physical"
-                          else lambda x, i: np.ones(np.shape(x), dtype=bool))
-            attached_branch(residual, admissible, phi, candidates, upper, self._describe(inputs),
-                            RESIDUAL_TOL, MAX_ITER)
+            attached_branch(residual, admissible, phi, candidates, upper, describe, RESIDUAL_TOL, MAX_ITER)
         phi, found = phi.reshape(shape), found.reshape(shape)
         real_inputs = {name: np.real(inputs[name]) for name in NODE_INPUTS + ("radii", "chord", "twist")}
         fallback = np.real(self._fallback_angle(real_inputs)[0])

@@ -127,13 +127,13 @@ def warm_region_one(residual, previous, initial_guess=None, tol=RESIDUAL_TOL, ma
     result = bracketed_newton(lambda x, i: residual(x, idx[sel[i]]), lo[sel], hi[sel], f_lo[sel], x0[sel],
                               atol=tol, max_iter=max_iter)
     x, sign_b = result.x, np.sign(rb[sel])
-    monotone = np.all(np.sign(slopes[2:, sel]) == sign_b, axis=0)
-    # One simple root x in (a, b): R falls (or rises) through it, with the sign of R(a) left of x and that of
-    # R(b) right of it; a slope of the other sign at p, c or m shows a second and a third root.
-    good = result.converged & (np.sign(result.slope) == sign_b) & monotone
-    for point, value in ((p[sel], rp[sel]), (c[sel], rc[sel]), (m[sel], rm[sel])):
-        good &= (np.abs(value) <= tol) | ((np.sign(value) == sign_b) == (point > x))
-    good = result.converged if any_root else good
+    good = result.converged
+    if not any_root:
+        # One simple root x in (a, b): R falls (or rises) through it, with the sign of R(a) left of x and that
+        # of R(b) right of it; a slope of the other sign at p, c or m shows a second and a third root.
+        good = good & (np.sign(result.slope) == sign_b) & np.all(np.sign(slopes[2:, sel]) == sign_b, axis=0)
+        for point, value in ((p[sel], rp[sel]), (c[sel], rc[sel]), (m[sel], rm[sel])):
+            good &= (np.abs(value) <= tol) | ((np.sign(value) == sign_b) == (point > x))
     phi[idx[sel[good]]] = x[good]
     accepted[idx[sel[good]]] = True
     return phi, accepted
@@ -356,24 +356,29 @@ _Q1_SCAN = np.linspace(BRACKET_EPS, 0.5 * np.pi, 31)
 
 
 def _scan_admissible(residual, admissible, phi, found, describe, tol, max_iter, todo, grid, last, allowed=True):
-    """Solve in the first (or last) grid interval with a sign change and admissible end points (in place)."""
+    """Solve in the first (or last) grid interval with a sign change and admissible end points (in place).
+
+    ``grid`` is one grid for all stations ``todo``, shape ``(k,)``, or one per station, ``(todo.size, k)``.
+    """
     n = todo.size
-    stations = np.repeat(todo, grid.size)
-    x = np.broadcast_to(grid, (n, grid.size)).ravel()
+    points = np.broadcast_to(grid, (n, np.shape(grid)[-1]))
+    k = points.shape[1]
+    stations = np.repeat(todo, k)
+    x = points.ravel()
     values = residual(x, stations)[0]
     _check_finite(values, stations, x, describe)
-    values = values.reshape(n, grid.size)
-    ok_end = admissible(x, stations).reshape(n, grid.size) & allowed
+    values = values.reshape(n, k)
+    ok_end = admissible(x, stations).reshape(n, k) & allowed
     change = opposite_signs(values[:, :-1], values[:, 1:]) & ok_end[:, :-1] & ok_end[:, 1:]
-    change &= np.broadcast_to(np.diff(np.sign(grid)) == 0, change.shape)   # never across phi = 0
+    change &= np.diff(np.sign(points), axis=1) == 0   # never across phi = 0
     has = change.any(axis=1)
     if not np.any(has):
         return
     rows = np.flatnonzero(has)
-    first = (grid.size - 2 - np.argmax(change[:, ::-1], axis=1) if last else np.argmax(change, axis=1))[has]
+    first = (k - 2 - np.argmax(change[:, ::-1], axis=1) if last else np.argmax(change, axis=1))[has]
     sel = todo[has]
-    xr = _solve_in(residual, sel, grid[first], grid[first + 1], values[rows, first], values[rows, first + 1],
-                   None, describe, tol, max_iter)
+    xr = _solve_in(residual, sel, points[rows, first], points[rows, first + 1], values[rows, first],
+                   values[rows, first + 1], None, describe, tol, max_iter)
     good = admissible(xr, sel)
     phi[sel[good]] = xr[good]
     found[sel[good]] = True

@@ -261,6 +261,13 @@ def _from_trimmed_start(prob, result, start_chord, start_twist):
     """
     optimum_chord = prob.get_val("chord_ratio_cp")[0].copy()
     optimum_twist = prob.get_val("twist_cp", units="rad")[0].copy()
+
+    def keep_first():
+        prob.set_val("chord_ratio_cp", optimum_chord)
+        prob.set_val("twist_cp", optimum_twist, units="rad")
+        prob.run_model()
+        return result
+
     prob.set_val("chord_ratio_cp", start_chord)
     prob.set_val("twist_cp", start_twist, units="rad")
     try:
@@ -271,10 +278,7 @@ def _from_trimmed_start(prob, result, start_chord, start_twist):
         bound = float(prob.get_val("energy_loss")[0])
     energy = result.performance["energy_loss"]
     if bound is None or (result.converged and energy <= bound * (1.0 + TRIMMED_START_TOLERANCE)):
-        prob.set_val("chord_ratio_cp", optimum_chord)
-        prob.set_val("twist_cp", optimum_twist, units="rad")
-        prob.run_model()
-        return result
+        return keep_first()
     label = (f"{100.0 * (energy / bound - 1.0):.2f} % worse than the trimmed start" if result.converged
              else f"not converged: {result.status}")
     again = run_optimization(prob)
@@ -284,13 +288,10 @@ def _from_trimmed_start(prob, result, start_chord, start_twist):
     if again.converged and (not result.converged or again.performance["energy_loss"] < energy):
         again.status = f"{again.status} (restarted from the initial design trimmed to the thrust; first run {label})"
         return again
-    prob.set_val("chord_ratio_cp", optimum_chord)
-    prob.set_val("twist_cp", optimum_twist, units="rad")
-    prob.run_model()
     result.iterations, result.model_evaluations, result.wall_time = (again.iterations, again.model_evaluations,
                                                                      again.wall_time)
     result.status = f"{result.status} ({label}; a restart from the trimmed start did no better)"
-    return result
+    return keep_first()
 
 
 def _check_case_options(options):
