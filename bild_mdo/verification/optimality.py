@@ -39,6 +39,7 @@ from bild_mdo.atmosphere import isa
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.bem.flow_states import INVALID_STATES
 from bild_mdo.constants import RPM_TO_REV_PER_S
+from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS
 
 from bild_mdo.airfoil.text import sweep_polar
 
@@ -129,6 +130,7 @@ def _trim_batch(rows, tol, max_iter, first_step, max_step):
     chord = np.array([row["bild_chord"] for row in rows], dtype=float)
     twist = np.array([row["bild_twist"] for row in rows], dtype=float)
     case = {k: np.array([row[k] for row in rows], dtype=float) for k in _CASE_KEYS}
+    chord = np.maximum(chord, CHORD_RATIO_BOUNDS[0] * case["radius"][:, None])  # see trimmed_bild_energy_loss
     target = _thrust_target(rows)
 
     def analyse(offset):
@@ -180,7 +182,13 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     For each case the twist is shifted uniformly (collective pitch) until
     the BEM thrust equals ``T* = T_BILD = C_T rho n^2 D^4`` (C_T as BILD
     reported it, rho from the ISA at the case's altitude, n = rpm / 60,
-    D = 2 R): the optimisation's thrust target.  All cases of one
+    D = 2 R): the optimisation's thrust target.  A chord below the
+    optimisation's lower bound (``c/R = CHORD_RATIO_BOUNDS[0]``, 1e-4) is
+    raised to it, as in the optimiser's BILD start: BILD gives a zero chord
+    where its ideal load vanishes (``ideal_loading='exact'`` at low Reynolds
+    numbers, at hub or tip), which the BEM analysis refuses; at the bound it
+    is a feasible design of the same problem whose station carries almost no
+    load.  All cases of one
     configuration (stations, blades, airfoil; the sweep has one) are solved
     together: every iteration is one vectorised
     :func:`~bild_mdo.bem.analyze.analyze_rotor` call with ``num_nodes`` equal to

@@ -7,7 +7,7 @@ import pytest
 
 from bild_mdo.airfoil.builtin import get_polar
 from bild_mdo.atmosphere import isa
-from bild_mdo.bem.analyze import station_radii
+from bild_mdo.bem.analyze import analyze_rotor, station_radii
 from bild_mdo.bild.bild_group import BILDGroup
 from bild_mdo.optimization.problem import build_optimization_problem, set_optimization_case
 from bild_mdo.optimization.run import trim_to_thrust
@@ -150,3 +150,21 @@ def test_energy_excess_of_the_trimmed_bild_design(rows, trim):
             f"mean +{100.0 * excess.mean():.3f} %, worst +3.000 % (case {rows[-1]['case_id']}).") in check.summary()
     # Without a section point the summary is the paper setting's, without the line.
     assert "energy excess" not in optimality_check(built, trim=trim).summary()
+
+
+def test_zero_bild_chords_are_trimmed_at_the_optimisers_lower_bound(rows):
+    # BILD's exact ideal loading can leave an annulus unloaded (chord 0), which the BEM analysis refuses; the trim
+    # holds such chords to the optimisation's bound c/R = 1e-4 (CHORD_RATIO_BOUNDS), as the optimiser's start does.
+    # Invariant: a design with zero chords is trimmed exactly as the same design with those chords at the bound.
+    row = rows[0]
+    chord = np.array(row["bild_chord"], dtype=float)
+    zeroed, at_bound = chord.copy(), chord.copy()
+    zeroed[[0, -1]] = 0.0
+    at_bound[[0, -1]] = 1.0e-4 * row["radius"]
+    with pytest.raises(ValueError, match="chord must be a positive"):
+        analyze_rotor(zeroed[None, :], np.array(row["bild_twist"])[None, :], row["radius"], row["hub_radius"],
+                      row["rpm"], row["v_axial"], row["num_blades"], get_polar(row["airfoil"]))
+    trims = [trimmed_bild_energy_loss([dict(row, bild_chord=c)]) for c in (zeroed, at_bound)]
+    assert trims[0].converged.all() and trims[1].converged.all()
+    assert trims[0].energy_loss[0] == trims[1].energy_loss[0]
+    assert trims[0].pitch_offset[0] == trims[1].pitch_offset[0]
