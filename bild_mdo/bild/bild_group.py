@@ -21,7 +21,7 @@ from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
-from bild_mdo.bild.local_section_point import SECTION_POINTS
+from bild_mdo.bild.local_section_point import SECTION_POINTS, check_section_setting
 from bild_mdo.bild.local_section_point_comp import (
     LoadReynoldsComp,
     LocalSectionPointComp,
@@ -207,7 +207,8 @@ class BILDGroup(om.Group):
         ``'paper'`` (default): Eq. (22) and the quartic (27), which leave
         ``dF/dphi`` out.  ``'exact'``: ``(F e)' = lambda (F t)'`` at every
         station (:mod:`bild_mdo.bild.annulus_stationarity`), the optimum of the
-        BEM model for a fixed airfoil point (with ``'local'``: each station's own).
+        BEM model for a fixed airfoil point; not with ``section_point='local'``
+        (ValueError: :func:`~bild_mdo.bild.local_section_point.check_section_setting` says why).
     thrust_target : bool
         False (default): ``ref_chord`` is an input.  True: ``thrust_target``
         is, and ``ref_chord`` is the output that gives ``thrust =
@@ -318,6 +319,7 @@ class BILDGroup(om.Group):
         self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
                            promotes_inputs=["rpm", "radii", "ref_radius"],
                            promotes_outputs=["v_theta", "v_theta_ref"])
+        check_section_setting(opts["section_point"], opts["ideal_loading"])
         if opts["section_point"] == "local":
             self._add_local_section_chain(polar, node, size, loss, checked)
         else:
@@ -416,10 +418,10 @@ class BILDGroup(om.Group):
         self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
                            promotes_inputs=["phi_ref"] + reference_in,
                            promotes_outputs=["u_axial_ref", "u_theta_ref"])
-        exact = _add_ideal_loading(self, opts["ideal_loading"], node, loss, checked, reference_in)
+        _add_ideal_loading(self, "paper", node, loss, checked, reference_in)  # the only one (check_section_setting)
         along = dict(varies_along_span=True)
         loop = _coupled_loop(self.add_subsystem("section_point_loop", om.Group(), promotes=["*"]))
-        _add_ideal_stations(loop, size, loss, checked, along, exact)
+        _add_ideal_stations(loop, size, loss, checked, along, exact=False)
         chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
         loop.add_subsystem("load_reynolds", LoadReynoldsComp(**size, **form),
                            promotes_inputs=chord_load + ["inflow_speed", "v_theta", "v_axial", "mu"],

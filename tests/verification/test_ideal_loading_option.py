@@ -43,20 +43,23 @@ def test_ideal_loading_is_part_of_the_fingerprint_and_the_default_is_unchanged()
     assert SweepSpec().fingerprint() == SweepSpec(ideal_loading="paper").fingerprint() == DEFAULT_FINGERPRINT
     assert "ideal_loading" not in SweepSpec().to_dict()
     assert SweepSpec(ideal_loading="exact").to_dict()["ideal_loading"] == "exact"
+    settings = [("reference", "paper"), ("reference", "exact"), ("local", "paper")]
     prints = {SweepSpec(levels=3, section_point=point, starts=starts, ideal_loading=loading).fingerprint()
-              for point in ("reference", "local") for starts in (1, 2) for loading in ("paper", "exact")}
-    assert len(prints) == 8
-    case = SweepSpec(levels=2, section_point="local", starts=2, ideal_loading="exact").case(3)
-    assert (case.section_point, case.starts, case.ideal_loading) == ("local", 2, "exact")
+              for point, loading in settings for starts in (1, 2)}
+    assert len(prints) == 6
+    case = SweepSpec(levels=2, starts=2, ideal_loading="exact").case(3)
+    assert (case.section_point, case.starts, case.ideal_loading) == ("reference", 2, "exact")
     with pytest.raises(ValueError, match="ideal loading must be one of paper, exact, got 'betz'"):
         SweepSpec(ideal_loading="betz")
+    with pytest.raises(ValueError, match=r"^section_point='local' cannot be combined with ideal_loading='exact'"):
+        SweepSpec(section_point="local", ideal_loading="exact")
 
 
 def test_default_store_name_names_the_exact_ideal_loading():
     assert default_db_path(SweepSpec(levels=3)) == "bild-verify-L3-slsqp.sqlite"
     assert default_db_path(SweepSpec(levels=3, ideal_loading="exact")) == "bild-verify-L3-slsqp-exact.sqlite"
-    assert (default_db_path(SweepSpec(levels=3, section_point="local", starts=2, ideal_loading="exact"))
-            == "bild-verify-L3-slsqp-local-exact-starts2.sqlite")
+    assert (default_db_path(SweepSpec(levels=3, starts=2, ideal_loading="exact"))
+            == "bild-verify-L3-slsqp-exact-starts2.sqlite")
 
 
 def test_a_store_of_one_ideal_loading_is_never_resumed_as_the_other(tmp_path):
@@ -71,8 +74,9 @@ def test_a_store_of_one_ideal_loading_is_never_resumed_as_the_other(tmp_path):
 
 
 def test_bild_batch_designs_every_start_with_the_sweeps_ideal_loading(monkeypatch):
-    # Start 2 is BILD at the other section point with the same ideal loading.  The recorded models are built at the
-    # reference point (fast); only the options the sweep asks for are checked.
+    # Start 2 is BILD at the other section point with the same ideal loading, but the local point takes the paper's
+    # only (check_section_setting).  The recorded models are built at the reference point (fast); only the options
+    # the sweep asks for are checked.
     calls = []
 
     def recording(*args, section_point="reference", ideal_loading="paper"):
@@ -82,7 +86,7 @@ def test_bild_batch_designs_every_start_with_the_sweeps_ideal_loading(monkeypatc
     monkeypatch.setattr(case_functions, "bild_problem", recording)
     spec = SweepSpec(levels=2, starts=2, ideal_loading="exact", num_radial=8)
     rows = case_functions.bild_batch(spec.cases([0, 15]))
-    assert calls == [("reference", "exact"), ("local", "exact")]
+    assert calls == [("reference", "exact"), ("local", "paper")]
     assert all(row["converged"] and row["other_chord"] is not None for row in rows)
 
 
