@@ -88,9 +88,9 @@ def add_verify_arguments(parser):
                              "sweep's fingerprint (default: paper)")
     parser.add_argument("--starts", type=int, default=1, metavar="N",
                         help=f"optimiser starts per case, 1 to {len(START_KINDS)}: BILD at the section point, BILD at "
-                             "the other section point (same ideal loading; the paper's at the local point), a linear chord/twist; "
-                             "the lowest-energy converged optimum is the reference and the spread between the starts is reported; part of the sweep's "
-                             "fingerprint (default: 1)")
+                             "the other section point (same ideal loading; the paper's at the local point), a linear "
+                             "chord/twist; the lowest-energy converged optimum is the reference and the spread "
+                             "between the starts is reported; part of the sweep's fingerprint (default: 1)")
     parser.add_argument("--figures", metavar="DIR", default=None,
                         help="write Fig. 4 and Fig. 5 as PNG files into DIR (needs bild-mdo[plot])")
     parser.add_argument("--no-progress", action="store_true", help="no progress report on stderr")

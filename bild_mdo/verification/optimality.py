@@ -185,10 +185,10 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     D = 2 R): the optimisation's thrust target.  A chord below the
     optimisation's lower bound (``c/R = CHORD_RATIO_BOUNDS[0]``, 1e-4) is
     raised to it, as in the optimiser's BILD start: BILD gives a zero chord
-    where its ideal load vanishes (``ideal_loading='exact'`` at low Reynolds
-    numbers, at hub or tip), which the BEM analysis refuses; at the bound it
-    is a feasible design of the same problem whose station carries almost no
-    load.  All cases of one
+    where its ideal load vanishes (an annulus whose profile loss per thrust
+    at zero load exceeds lambda, e.g. at the hub in fast forward flight with
+    the exact loading), which the BEM analysis refuses; at the bound it is a
+    feasible design of the same problem whose station carries almost no load.  All cases of one
     configuration (stations, blades, airfoil; the sweep has one) are solved
     together: every iteration is one vectorised
     :func:`~bild_mdo.bem.analyze.analyze_rotor` call with ``num_nodes`` equal to
