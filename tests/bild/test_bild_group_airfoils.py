@@ -67,6 +67,13 @@ def test_totals_complex_step(kind, polar):
                        values=_values(kind), atol=1e-10, rtol=1e-6)
 
 
+def test_totals_complex_step_exact_loading_with_an_airfoil_per_station(kind):
+    # The exact ideal loading with each station's own airfoil point (ExactEta2Comp(varies_along_span=True)) in
+    # the group; the local section point, which also fed it per-station points, is refused with it.
+    check_group_totals(lambda: BILDGroup(num_nodes=3, num_radial=NR_REF, polar=SPANWISE, ideal_loading="exact"),
+                       of=OF, wrt=WRT, values=_values(kind), atol=1e-10, rtol=1e-6)
+
+
 def test_mach_outputs(kind):
     # M = W / a per station; M_tip = sqrt(V_x^2 + (Omega R)^2) / a; M_ref = sqrt(V_x^2 + (Omega r_ref)^2) / a.
     prob = _run(kind, COMPRESSIBLE)
