@@ -44,6 +44,7 @@ from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS
 from bild_mdo.airfoil.text import sweep_polar
 
 from .cases import bild_setting
+from .feathering import least_loss_twist
 
 #: Loss model of the optimisation problem the optimum comes from.
 LOSS_MODEL = "tip_hub"
@@ -130,7 +131,11 @@ def _trim_batch(rows, tol, max_iter, first_step, max_step):
     chord = np.array([row["bild_chord"] for row in rows], dtype=float)
     twist = np.array([row["bild_twist"] for row in rows], dtype=float)
     case = {k: np.array([row[k] for row in rows], dtype=float) for k in _CASE_KEYS}
-    chord = np.maximum(chord, CHORD_RATIO_BOUNDS[0] * case["radius"][:, None])  # see trimmed_bild_energy_loss
+    bound = CHORD_RATIO_BOUNDS[0] * case["radius"][:, None]
+    raised = chord < bound
+    chord = np.maximum(chord, bound)  # see trimmed_bild_energy_loss
+    if np.any(raised):
+        twist = least_loss_twist(chord, twist, raised, case, int(num_blades), polar, LOSS_MODEL)
     target = _thrust_target(rows)
 
     def analyse(offset):
@@ -188,7 +193,10 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     where its ideal load vanishes (an annulus whose profile loss per thrust
     at zero load exceeds lambda, e.g. at the hub in fast forward flight with
     the exact loading), which the BEM analysis refuses; at the bound it is a
-    feasible design of the same problem whose station carries almost no load.  All cases of one
+    feasible design of the same problem.  BILD gives no twist there (no
+    blade), so the trim gives such a station the twist of least energy loss
+    (:func:`~bild_mdo.verification.feathering.least_loss_twist`), as the
+    optimiser from its BILD start may.  All cases of one
     configuration (stations, blades, airfoil; the sweep has one) are solved
     together: every iteration is one vectorised
     :func:`~bild_mdo.bem.analyze.analyze_rotor` call with ``num_nodes`` equal to

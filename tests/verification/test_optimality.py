@@ -6,6 +6,7 @@ import openmdao.api as om
 import pytest
 
 from bild_mdo.airfoil.builtin import get_polar
+from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.bem.analyze import analyze_rotor, station_radii
 from bild_mdo.bild.bild_group import BILDGroup
@@ -13,6 +14,7 @@ from bild_mdo.optimization.problem import build_optimization_problem, set_optimi
 from bild_mdo.optimization.run import trim_to_thrust
 from bild_mdo.verification.case_functions import bild_batch, optimize_case
 from bild_mdo.verification.cases import SweepSpec
+from bild_mdo.verification.feathering import least_loss_twist
 from bild_mdo.verification.optimality import optimality_check, trimmed_bild_energy_loss
 from bild_mdo.verification.runner import run_sweep
 from bild_mdo.verification.statistics import format_table3, table3
@@ -154,17 +156,36 @@ def test_energy_excess_of_the_trimmed_bild_design(rows, trim):
 
 def test_zero_bild_chords_are_trimmed_at_the_optimisers_lower_bound(rows):
     # BILD's exact ideal loading can leave an annulus unloaded (chord 0), which the BEM analysis refuses; the trim
-    # holds such chords to the optimisation's bound c/R = 1e-4 (CHORD_RATIO_BOUNDS), as the optimiser's start does.
-    # Invariant: a design with zero chords is trimmed exactly as the same design with those chords at the bound.
+    # holds such chords to the optimisation's bound c/R = 1e-4 (CHORD_RATIO_BOUNDS), as the optimiser's start does,
+    # and gives them the twist of least station energy loss (BILD has no twist where it has no blade).
+    # Invariants: the zero-chord design is trimmed exactly as the same design with those chords at the bound and
+    # those twists; and each such station's BEM loss Omega dQ/dr - V_x dT/dr is no larger than with BILD's twist
+    # (BILD's twist is one of the candidates).
     row = rows[0]
     chord = np.array(row["bild_chord"], dtype=float)
+    twist = np.array(row["bild_twist"], dtype=float)
     zeroed, at_bound = chord.copy(), chord.copy()
     zeroed[[0, -1]] = 0.0
     at_bound[[0, -1]] = 1.0e-4 * row["radius"]
     with pytest.raises(ValueError, match="chord must be a positive"):
-        analyze_rotor(zeroed[None, :], np.array(row["bild_twist"])[None, :], row["radius"], row["hub_radius"],
+        analyze_rotor(zeroed[None, :], twist[None, :], row["radius"], row["hub_radius"],
                       row["rpm"], row["v_axial"], row["num_blades"], get_polar(row["airfoil"]))
-    trims = [trimmed_bild_energy_loss([dict(row, bild_chord=c)]) for c in (zeroed, at_bound)]
+    case = {k: np.array([row[k]], dtype=float) for k in ("v_axial", "rpm", "radius", "hub_radius", "altitude")}
+    raised = zeroed[None, :] < at_bound[None, :]
+    feathered = least_loss_twist(at_bound[None, :], twist[None, :], raised, case, int(row["num_blades"]),
+                                  sweep_polar(row["airfoil"]), "tip_hub")
+    np.testing.assert_array_equal(feathered[~raised], twist[None, :][~raised])
+    trims = [trimmed_bild_energy_loss([dict(row, bild_chord=c, bild_twist=t)])
+             for c, t in ((zeroed, twist), (at_bound, feathered[0]))]
     assert trims[0].converged.all() and trims[1].converged.all()
     assert trims[0].energy_loss[0] == trims[1].energy_loss[0]
     assert trims[0].pitch_offset[0] == trims[1].pitch_offset[0]
+
+    def station_loss(t):
+        result = analyze_rotor(at_bound[None, :], t[None, :], row["radius"], row["hub_radius"], row["rpm"],
+                               row["v_axial"], row["num_blades"], get_polar(row["airfoil"]), altitude=row["altitude"],
+                               on_invalid="ignore")
+        omega = row["rpm"] * np.pi / 30.0
+        return (omega * result.dtorque_dr - row["v_axial"] * result.dthrust_dr)[0]
+
+    assert np.all(station_loss(feathered[0])[[0, -1]] <= station_loss(twist)[[0, -1]])
