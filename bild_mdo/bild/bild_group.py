@@ -12,24 +12,12 @@ from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.stations import StationsComp
 from bild_mdo.bild.advance_ratio import AdvanceRatioComp
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
+from bild_mdo.bild.chains import add_ideal_loading, add_ideal_stations, add_local_section_chain
 from bild_mdo.bild.chord import CHORD_FORMS, ChordComp
-from bild_mdo.bild.eta2 import Eta2Comp
-from bild_mdo.bild.exact_eta2 import ExactEta2Comp
-from bild_mdo.bild.exact_ideal_loading import ExactIdealLoadingComp
 from bild_mdo.bild.feasibility import ON_INFEASIBLE, FeasibilityComp, FeasibilityLedger
 from bild_mdo.bild.geometry import GeometryComp
-from bild_mdo.bild.ideal_loading import IdealLoadingComp
-from bild_mdo.bild.induced_velocity import InducedVelocityComp
-from bild_mdo.bild.inflow_angle import InflowAngleComp
-from bild_mdo.bild.local_section_point import SECTION_POINTS, check_section_setting
-from bild_mdo.bild.local_section_point_comp import (
-    LoadReynoldsComp,
-    LocalSectionPointComp,
-    ReferenceReynoldsComp,
-    ReferenceSectionPointComp,
-)
+from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.bild.mach import LocalMachComp
-from bild_mdo.bild.momentum_loads import MomentumLoadsComp
 from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp, default_polar
 from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
 from bild_mdo.bild.reference_station import REFERENCE_INPUTS, ReferenceStationComp
@@ -57,40 +45,6 @@ def _check_correction(name, value):
         return
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not value > 0.0:
         raise ValueError(f"{name} must be None (no correction) or a positive number k, got {value!r}")
-
-
-def _add_ideal_stations(group, size, loss, checked, along, exact=False):
-    """Add eta2 -> induced velocity -> inflow angle -> momentum loads, the per-station chain both section points use."""
-    eta2_in = ["v_axial", "v_theta", "ideal_loading_constant", "cl_star", "cd_star"]
-    if exact:
-        group.add_subsystem("eta2", ExactEta2Comp(**size, **loss, **checked, **along),
-                            promotes_inputs=eta2_in + ["radii", "radius", "hub_radius"], promotes_outputs=["eta2"])
-    else:
-        group.add_subsystem("eta2", Eta2Comp(**size, **checked, **along), promotes_inputs=eta2_in,
-                            promotes_outputs=["eta2"])
-    group.add_subsystem("induced_velocity", InducedVelocityComp(**size, **checked, **along),
-                        promotes_inputs=["eta2", "v_axial", "v_theta", "cl_star", "cd_star"],
-                        promotes_outputs=["u_axial", "u_theta"])
-    group.add_subsystem("inflow_angle", InflowAngleComp(**size, **checked, **along),
-                        promotes_inputs=["u_axial", "u_theta", "v_theta", "alpha_star"],
-                        promotes_outputs=["phi", "inflow_speed", "twist"])
-    group.add_subsystem("momentum_loads", MomentumLoadsComp(**size, **loss, **checked),
-                        promotes_inputs=["u_axial", "u_theta", "phi", "radii", "v_axial", "rho", "rpm", "radius",
-                                         "hub_radius"],
-                        promotes_outputs=["loss_factor", "dthrust_dr", "dtorque_dr", "denergy_loss_dr"])
-
-
-def _add_ideal_loading(group, ideal_loading, node, loss, checked, reference_in):
-    """Add lambda (Eq. (22), or the exact ``(F e)'/(F t)'`` at ``phi_ref``); return whether it is the exact one."""
-    if ideal_loading == "exact":
-        group.add_subsystem("ideal_loading", ExactIdealLoadingComp(**node, **loss, **checked),
-                            promotes_inputs=["phi_ref"] + [name for name in reference_in if name != "ref_chord"],
-                            promotes_outputs=["ideal_loading_constant"])
-    else:
-        group.add_subsystem("ideal_loading", IdealLoadingComp(**node, **checked),
-                            promotes_inputs=["u_axial_ref", "u_theta_ref", "v_axial", "v_theta_ref"],
-                            promotes_outputs=["ideal_loading_constant"])
-    return ideal_loading == "exact"
 
 
 class BILDGroup(om.Group):
@@ -196,7 +150,7 @@ class BILDGroup(om.Group):
         so ``Re = rho W0 c / mu``, follows from the load
         (:mod:`bild_mdo.bild.local_section_point`); eta2 then uses each
         station's own ``cd/cl``, and two subgroups with Newton's method close
-        the loops (see :meth:`_add_local_section_chain`).  Extra outputs:
+        the loops (see :func:`~bild_mdo.bild.chains.add_local_section_chain`).  Extra outputs:
         ``reynolds[nn, nr]``, ``load_reynolds[nn, nr]``, ``alpha_star_ref,
         cl_star_ref, cd_star_ref``; ``alpha_star, cl_star, cd_star`` are
         ``[nn, nr]`` and ``mach_ref`` is not computed.  Needs a polar that
@@ -207,8 +161,14 @@ class BILDGroup(om.Group):
         ``'paper'`` (default): Eq. (22) and the quartic (27), which leave
         ``dF/dphi`` out.  ``'exact'``: ``(F e)' = lambda (F t)'`` at every
         station (:mod:`bild_mdo.bild.annulus_stationarity`), the optimum of the
-        BEM model for a fixed airfoil point; not with ``section_point='local'``
-        (ValueError: :func:`~bild_mdo.bild.local_section_point.check_section_setting` says why).
+        BEM model for a fixed airfoil point.  With ``section_point='local'``:
+        the Reynolds-aware exact loading
+        (:mod:`bild_mdo.bild.reynolds_ideal_loading`), where each annulus
+        minimises ``F (e - lambda t)`` with its section point following its
+        own load (the derivative of ``cd/cl`` with the load through the
+        chord's Reynolds number enters the condition); every station is solved
+        on its own given lambda (no loop), and a station whose best loaded
+        state does not beat the unloaded one gets zero chord.
     thrust_target : bool
         False (default): ``ref_chord`` is an input.  True: ``thrust_target``
         is, and ``ref_chord`` is the output that gives ``thrust =
@@ -319,9 +279,8 @@ class BILDGroup(om.Group):
         self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
                            promotes_inputs=["rpm", "radii", "ref_radius"],
                            promotes_outputs=["v_theta", "v_theta_ref"])
-        check_section_setting(opts["section_point"], opts["ideal_loading"])
         if opts["section_point"] == "local":
-            self._add_local_section_chain(polar, node, size, loss, checked)
+            add_local_section_chain(self, polar, node, size, loss, checked)
         else:
             # A polar that varies along the span gives every station its own airfoil point (nn, nr); the
             # reference station then reads its own point, promoted as cl_star_ref, cd_star_ref.
@@ -340,9 +299,9 @@ class BILDGroup(om.Group):
             self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
                                promotes_inputs=["phi_ref"] + reference_in,
                                promotes_outputs=["u_axial_ref", "u_theta_ref"])
-            exact = _add_ideal_loading(self, opts["ideal_loading"], node, loss, checked, reference_in)
+            exact = add_ideal_loading(self, opts["ideal_loading"], node, loss, checked, reference_in)
             along = dict(varies_along_span=spanwise)
-            _add_ideal_stations(self, size, loss, checked, along, exact)
+            add_ideal_stations(self, size, loss, checked, along, exact)
             chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
             self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
                                                   **along),
@@ -381,69 +340,3 @@ class BILDGroup(om.Group):
         else:
             self.set_input_defaults("ref_chord", val=np.full(nn, 0.15), units="m")
         self.set_input_defaults("altitude", val=np.zeros(nn), units="m")
-
-    def _add_local_section_chain(self, polar, node, size, loss, checked):
-        """Steps 1-7 with each station's own section point (``section_point='local'``).
-
-        Two coupled loops, each a subgroup solved by Newton's method with a
-        direct linear solve (exact totals through the loops):
-
-        * ``reference_point``: the reference station's BEM inflow angle with
-          ``c_ref`` and its section point at ``Re_ref = rho W0 c_ref / mu``: the
-          point that is a minimum of ``cd/cl`` along its own path of fixed load
-          (:mod:`~bild_mdo.bild.local_section_point_reference`), so a station
-          placed at ``r_ref`` gets the same load, the same point and the chord
-          ``c_ref`` (except where the path has a second, lower minimum: see there).
-        * ``section_point_loop``: eta2 (with each station's own ``cd/cl``) ->
-          induced velocities -> phi, W -> loads -> load Reynolds number -> the
-          stations' section points -> eta2.
-        """
-        opts = self.options
-        if polar.varies_along_span or polar.varies_with_mach:
-            raise ValueError("section_point='local' needs a polar that varies with the Reynolds number only; "
-                             f"{polar.name!r} varies with Mach number or along the span: use section_point='reference'")
-        form = dict(num_blades=opts["num_blades"], chord_form=opts["chord_form"])
-        reference_in = [(name, f"{name}_ref") if name in ("cl_star", "cd_star") else name
-                        for name in REFERENCE_INPUTS]
-        self.add_subsystem("reference_reynolds", ReferenceReynoldsComp(**node),
-                           promotes_inputs=["v_axial", "v_theta_ref", "ref_chord", "rho", "mu"],
-                           promotes_outputs=["reynolds_ref"])
-        loop = _coupled_loop(self.add_subsystem("reference_point", om.Group(), promotes=["*"]))
-        loop.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
-                           promotes_inputs=reference_in, promotes_outputs=["phi_ref"])
-        loop.add_subsystem("reference_section_point",
-                           ReferenceSectionPointComp(**node, chord_form=opts["chord_form"], polar=polar),
-                           promotes_inputs=["phi_ref", "reynolds_ref"],
-                           promotes_outputs=["alpha_star_ref", "cl_star_ref", "cd_star_ref"])
-        self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
-                           promotes_inputs=["phi_ref"] + reference_in,
-                           promotes_outputs=["u_axial_ref", "u_theta_ref"])
-        _add_ideal_loading(self, "paper", node, loss, checked, reference_in)  # the only one (check_section_setting)
-        along = dict(varies_along_span=True)
-        loop = _coupled_loop(self.add_subsystem("section_point_loop", om.Group(), promotes=["*"]))
-        _add_ideal_stations(loop, size, loss, checked, along, exact=False)
-        chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
-        loop.add_subsystem("load_reynolds", LoadReynoldsComp(**size, **form),
-                           promotes_inputs=chord_load + ["inflow_speed", "v_theta", "v_axial", "mu"],
-                           promotes_outputs=["load_reynolds"])
-        loop.add_subsystem("section_point", LocalSectionPointComp(**size, **form, polar=polar),
-                           promotes_inputs=["phi", "load_reynolds"],
-                           promotes_outputs=["alpha_star", "cl_star", "cd_star", "reynolds"])
-        self.add_subsystem("chord", ChordComp(**size, **form, **checked, **along),
-                           promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
-                           promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
-
-
-def _coupled_loop(group):
-    """Newton's method with a direct linear solve on a subgroup that closes a loop of explicit components."""
-    # The implicit members (the reference BEM solve, eta2) solve themselves at every iteration, so Newton's
-    # method only closes the loop of the section point, which is mildly nonlinear: 2-4 iterations.
-    newton = om.NewtonSolver(solve_subsystems=True, max_sub_solves=_LOOP_MAX_ITERATIONS,
-                             maxiter=_LOOP_MAX_ITERATIONS, atol=1e-10, rtol=1e-12, iprint=-1,
-                             err_on_non_converge=True)
-    group.nonlinear_solver = newton
-    group.linear_solver = om.DirectSolver(assemble_jac=True)
-    return group
-
-
-_LOOP_MAX_ITERATIONS = 30

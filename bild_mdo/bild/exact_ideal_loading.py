@@ -65,24 +65,7 @@ class ExactIdealLoadingComp(om.ExplicitComponent):
                 self.options["loss_model"])
 
     def _validate(self, inputs, terms):
-        phi, v_x, v_t = (np.real(inputs[name]) for name in ("phi_ref", "v_axial", "v_theta_ref"))
-        d, n = np.real(terms.D), np.real(terms.N)
-        details = {"phi_ref [deg]": np.degrees(phi), "v_axial [m/s]": v_x, "v_theta_ref [m/s]": v_t}
-        checks = (
-            (np.isfinite(d) & np.isfinite(n) & (v_x >= 0.0) & (v_t > 0.0), "finite",
-             "the reference annulus is not finite (V_x >= 0 and V_theta_ref > 0 are needed)"),
-            (phi > unloaded_angle(v_x, v_t), "thrust",
-             "the reference station must produce thrust (phi_ref > atan(V_x/V_theta_ref)); raise ref_chord or rpm"),
-            (d > 0.0, "below_maximum_thrust",
-             "the reference station is loaded past its maximum annulus thrust (F t)' = 0, where the exact ideal "
-             "loading does not exist; reduce ref_chord or the advance ratio"),
-        )
-        failed = np.zeros(phi.shape, dtype=bool)
-        for ok, key, reason in checks:
-            bad = ~ok & ~failed
-            report_infeasible(self, key, bad, f"exact ideal loading: {reason}", details)
-            failed |= bad
-        return failed
+        return check_reference_annulus(self, inputs, terms.N, terms.D, "exact ideal loading", "(F t)' = 0")
 
     def compute(self, inputs, outputs):
         terms = stationarity(*self._arguments(inputs))
@@ -107,3 +90,30 @@ class ExactIdealLoadingComp(om.ExplicitComponent):
             if name == "v_theta_ref":
                 value = np.where(failed, 1.0, value)
             partials["ideal_loading_constant", name] = value
+
+
+def check_reference_annulus(component, inputs, numerator, denominator, method, maximum):
+    """Record the nodes whose reference annulus cannot define lambda = N / D; return them (bool ``[nn]``).
+
+    The annulus must be finite, carry thrust (``phi_ref > atan(V_x/V_theta_ref)``) and lie below its
+    maximum thrust (``D > 0``; ``maximum`` names that condition in the message); ``method`` names the
+    loading in the message.  Used by the exact and the Reynolds-aware exact loadings.
+    """
+    phi, v_x, v_t = (np.real(inputs[name]) for name in ("phi_ref", "v_axial", "v_theta_ref"))
+    d, n = np.real(denominator), np.real(numerator)
+    details = {"phi_ref [deg]": np.degrees(phi), "v_axial [m/s]": v_x, "v_theta_ref [m/s]": v_t}
+    checks = (
+        (np.isfinite(d) & np.isfinite(n) & (v_x >= 0.0) & (v_t > 0.0), "finite",
+         "the reference annulus is not finite (V_x >= 0 and V_theta_ref > 0 are needed)"),
+        (phi > unloaded_angle(v_x, v_t), "thrust",
+         "the reference station must produce thrust (phi_ref > atan(V_x/V_theta_ref)); raise ref_chord or rpm"),
+        (d > 0.0, "below_maximum_thrust",
+         f"the reference station is loaded past its maximum annulus thrust {maximum}, where the {method} "
+         "does not exist; reduce ref_chord or the advance ratio"),
+    )
+    failed = np.zeros(phi.shape, dtype=bool)
+    for ok, key, reason in checks:
+        bad = ~ok & ~failed
+        report_infeasible(component, key, bad, f"{method}: {reason}", details)
+        failed |= bad
+    return failed

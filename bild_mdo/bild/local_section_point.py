@@ -76,34 +76,6 @@ _LIFT_FLOOR = 0.1
 _MAX_ITERATIONS = 100
 
 
-def check_section_setting(section_point, ideal_loading):
-    """Raise ValueError for the one pair of BILD options that is refused: the local point with the exact loading.
-
-    The exact ideal loading (:mod:`~bild_mdo.bild.annulus_stationarity`)
-    makes ``(F e)' = lambda (F t)'`` at each station's ``cd/cl`` held fixed.
-    With the local point ``cd/cl`` follows the station's own load (chord, so
-    Reynolds number), and at low Reynolds numbers that fixed point is not
-    unique: an annulus with zero chord sits at the Reynolds floor, where its
-    ``cd/cl`` is large enough to keep it unloaded, and the same annulus loaded
-    is consistent too.  Measured on ``bild-mdo verify --levels 3``: 11 of 80
-    designs alone did not converge, 28 differed by 3-65 % in chord from the
-    same design in the sweep's batch, and the trimmed energy excess over the
-    best optimum was +0.31 % mean, +7.0 % worst, against +0.085 % / +1.2 %
-    with the paper's loading.  The per-annulus optimum would need the
-    derivative of ``cd/cl`` with the load along the BEM curve in the
-    condition, and a choice between the loaded and the unloaded state by value.
-
-    Raises
-    ------
-    ValueError
-        For ``section_point='local'`` with ``ideal_loading='exact'``.
-    """
-    if section_point == "local" and ideal_loading == "exact":
-        raise ValueError("section_point='local' cannot be combined with ideal_loading='exact' (at low Reynolds "
-                         "numbers that condition has several solutions: an annulus unloaded or not); use "
-                         "ideal_loading='paper' with 'local', or 'exact' with section_point='reference'")
-
-
 class LocalPoint(NamedTuple):
     """The local section point: ``alpha`` (rad), ``cl``, ``cd``, ``reynolds``, flat arrays."""
 
@@ -214,7 +186,8 @@ def _validate(phi, load_reynolds):
                          f"> 0, got min {float(np.min(load_reynolds))!r}")
 
 
-def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_range=None):
+def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_range=None, both=False,
+                      scan_step=_SCAN_STEP):
     """Minimise ``cd/cl`` along the path of fixed load at every element (module docstring).
 
     Parameters
@@ -230,9 +203,15 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
     alpha_range : tuple of float, optional
         Scan range (rad); default the polar's ``alpha_scan_range`` or -10..25 deg.
 
+    both : bool
+        Also return the runner-up: the other of the two lowest minima (NaN where the path has one).
+    scan_step : float
+        Step of the bracket scan (rad), default 0.5 deg; minima closer than it may merge into one bracket.
+
     Returns
     -------
     LocalPoint
+        The lower minimum; with ``both=True`` a pair ``(lower, runner_up)``.
 
     Raises
     ------
@@ -244,7 +223,7 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
     load_reynolds = np.asarray(load_reynolds, dtype=float).ravel()
     _validate(phi, load_reynolds)
     low, high = _scan_range(polar, alpha_range)
-    n, grid = phi.size, np.linspace(low, high, max(int(np.ceil((high - low) / _SCAN_STEP)) + 1, 3))
+    n, grid = phi.size, np.linspace(low, high, max(int(np.ceil((high - low) / scan_step)) + 1, 3))
     k_grid = grid.size
     p, q = force_factors(phi, chord_form)
     # Scan: Re on the path at every grid angle, marching in alpha so each inner solve starts close.
@@ -302,7 +281,14 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
     runner = np.arange(n, elem.size)
     better = s[runner] < s[rows[second]]
     pick[rows[second][better]] = runner[better]
-    return LocalPoint(alpha_c[pick], v.cl[pick], v.cd[pick], re_c[pick])
+    point = LocalPoint(alpha_c[pick], v.cl[pick], v.cd[pick], re_c[pick])
+    if not both:
+        return point
+    other = np.full(n, -1)
+    other[rows[second]] = np.where(better, rows[second], runner)
+    has = other >= 0
+    fields = [np.where(has, x[np.maximum(other, 0)], np.nan) for x in (alpha_c, v.cl, v.cd, re_c)]
+    return point, LocalPoint(*fields)
 
 
 class PointDerivatives(NamedTuple):

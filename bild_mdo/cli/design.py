@@ -62,7 +62,8 @@ def add_design_arguments(parser):
     parser.add_argument("--ideal-loading", choices=IDEAL_LOADINGS, default="paper",
                         help="'paper': lambda and eta2 of Eqs. (22), (27) (default); 'exact': every annulus makes "
                              "E - lambda T stationary with the Prandtl loss factor differentiated too (the BEM "
-                             "optimum for the airfoil point; not with --section-point local)")
+                             "optimum for the airfoil point; with --section-point local each station's cd/cl "
+                             "follows its own load too)")
     out = parser.add_argument_group("output files")
     out.add_argument("--csv", metavar="FILE", help="write the geometry table r [m], chord [m], twist [deg] "
                      "(a batch writes FILE_<i>.csv per design)")

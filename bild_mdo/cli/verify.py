@@ -84,11 +84,11 @@ def add_verify_arguments(parser):
     parser.add_argument("--ideal-loading", default="paper", choices=IDEAL_LOADINGS,
                         help="BILD's ideal loading: 'paper' (Eq. (22), without the derivative of Prandtl's F) or "
                              "'exact' (each annulus makes E - lambda T stationary with Prandtl's F kept: the BEM "
-                             "optimum for a Reynolds-independent polar; not with --section-point local); part of the "
-                             "sweep's fingerprint (default: paper)")
+                             "optimum for a Reynolds-independent polar; with --section-point local each station's "
+                             "cd/cl follows its own load too); part of the sweep's fingerprint (default: paper)")
     parser.add_argument("--starts", type=int, default=1, metavar="N",
                         help=f"optimiser starts per case, 1 to {len(START_KINDS)}: BILD at the section point, BILD at "
-                             "the other section point (same ideal loading; the paper's at the local point), a linear "
+                             "the other section point (same ideal loading), a linear "
                              "chord/twist; the lowest-energy converged optimum is the reference and the spread "
                              "between the starts is reported; part of the sweep's fingerprint (default: 1)")
     parser.add_argument("--figures", metavar="DIR", default=None,
@@ -194,10 +194,6 @@ def _sweep_spec(args, airfoil):
     if not 1 <= starts <= len(START_KINDS):
         raise ValueError(f"--starts must be an integer from 1 to {len(START_KINDS)} ({', '.join(START_KINDS)}), "
                          f"got {starts}")
-    if section_point == "local" and ideal_loading == "exact":
-        raise ValueError("--section-point local cannot be combined with --ideal-loading exact (at low Reynolds "
-                         "numbers that condition has several solutions: an annulus unloaded or not); use "
-                         "--ideal-loading paper with the local point, or exact with the reference point")
     return SweepSpec(levels=args.levels, optimizer=args.optimizer, airfoil=airfoil, section_point=section_point,
                      starts=starts, ideal_loading=ideal_loading)
 

@@ -31,7 +31,7 @@ from bild_mdo.bem.metrics import warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
-from bild_mdo.bild.local_section_point import SECTION_POINTS, check_section_setting
+from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.io.airfoil import resolve_airfoil
@@ -131,8 +131,9 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         ``'exact'``: every annulus makes ``E - lambda T`` stationary with the
         Prandtl factor differentiated too
         (:mod:`bild_mdo.bild.annulus_stationarity`); with a fixed airfoil point
-        this is the optimum of the BEM model.  Not with ``section_point='local'``
-        (ValueError; :func:`~bild_mdo.bild.local_section_point.check_section_setting` says why).
+        this is the optimum of the BEM model.  With ``section_point='local'``
+        the Reynolds-aware exact loading: each station's section point follows
+        its own load (:mod:`bild_mdo.bild.reynolds_ideal_loading`).
     on_infeasible : {'raise', 'skip'}
         What to do with designs whose ideal loading does not exist (the
         paper's Assumption 3 fails at a station, or a hover rotor cannot load
@@ -176,7 +177,6 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     validation.choice("on_infeasible", on_infeasible, ON_INFEASIBLE)
     validation.choice("section_point", section_point, SECTION_POINTS)
     validation.choice("ideal_loading", ideal_loading, IDEAL_LOADINGS)
-    check_section_setting(section_point, ideal_loading)
     if root_chord_correction is not None:
         root_chord_correction = float(validation.positive("root_chord_correction", root_chord_correction,
                                                           hint="k of Eq. (32), or None", ndim=(0,)))

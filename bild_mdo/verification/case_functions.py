@@ -121,8 +121,7 @@ def bild_batch(cases):
         for row in results:
             row["run_time"] = share
         others = [_other_point(points[i]) for i in second]
-        # The local point runs with the paper's loading only (check_section_setting).
-        loadings = ["paper" if other == "local" else _ideal_loading(cases[i]) for i, other in zip(second, others)]
+        loadings = [_ideal_loading(cases[i]) for i in second]
         alternatives = [None] * len(cases)
         for key, members in _group_cases([cases[i] for i in second], others, loadings).items():
             _bild_group(cases, [second[m] for m in members], alternatives, key[-1], key[-2])

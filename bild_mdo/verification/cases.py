@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
-from bild_mdo.bild.local_section_point import SECTION_POINTS, check_section_setting
+from bild_mdo.bild.local_section_point import SECTION_POINTS
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.optimization.problem import OPTIMIZERS
 
@@ -232,7 +232,6 @@ class SweepSpec:
                              f"got {self.starts!r}")
         if self.ideal_loading not in IDEAL_LOADINGS:
             raise ValueError(f"ideal loading must be one of {', '.join(IDEAL_LOADINGS)}, got {self.ideal_loading!r}")
-        check_section_setting(self.section_point, self.ideal_loading)
 
     def _range(self, axis):
         lo, hi = getattr(self, f"{axis}_range")

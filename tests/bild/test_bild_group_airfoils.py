@@ -69,7 +69,7 @@ def test_totals_complex_step(kind, polar):
 
 def test_totals_complex_step_exact_loading_with_an_airfoil_per_station(kind):
     # The exact ideal loading with each station's own airfoil point (ExactEta2Comp(varies_along_span=True)) in
-    # the group; the local section point, which also fed it per-station points, is refused with it.
+    # the group (the local section point with the exact loading has its own station component).
     check_group_totals(lambda: BILDGroup(num_nodes=3, num_radial=NR_REF, polar=SPANWISE, ideal_loading="exact"),
                        of=OF, wrt=WRT, values=_values(kind), atol=1e-10, rtol=1e-6)
 

@@ -36,32 +36,39 @@ def _problem(kind, section_point="local", complex_step=False, mode="auto", num_r
     return prob
 
 
+LOADINGS = pytest.mark.parametrize("ideal_loading", ["paper", "exact"])
+
+
+@LOADINGS
 @pytest.mark.parametrize("chord_form", ["thrust", "torque"])
-def test_chord_at_reference_radius_is_reference_chord(kind, chord_form):
+def test_chord_at_reference_radius_is_reference_chord(kind, chord_form, ideal_loading):
     # Invariant (issue 12): the reference station's point minimises cd/cl on the path through its own load
-    # with c_ref, so a station at r_ref gets the same load, the same point and the chord c_ref.
-    prob = _problem(kind, chord_form=chord_form)
+    # with c_ref, so a station at r_ref gets the same load, the same point and the chord c_ref (with the
+    # Reynolds-aware exact loading: lambda makes the reference state's own residuals vanish).
+    prob = _problem(kind, chord_form=chord_form, ideal_loading=ideal_loading)
     np.testing.assert_allclose(prob.get_val("radii")[:, REF_STATION] / prob.get_val("radius"), 0.5, rtol=1e-14)
     np.testing.assert_allclose(prob.get_val("chord")[:, REF_STATION], [0.1, 0.2, 0.3], rtol=1e-9)
     np.testing.assert_allclose(prob.get_val("alpha_star")[:, REF_STATION], prob.get_val("alpha_star_ref"),
                                atol=1e-10)
 
 
-def test_stations_run_at_their_own_reynolds_number(kind):
+@LOADINGS
+def test_stations_run_at_their_own_reynolds_number(kind, ideal_loading):
     # Re = rho W0 c / mu at every station (the BEM convention), with the chord that carries the ideal load.
-    prob = _problem(kind)
+    prob = _problem(kind, ideal_loading=ideal_loading)
     w0 = np.hypot(prob.get_val("v_axial")[:, None], prob.get_val("v_theta"))
     reynolds = prob.get_val("rho")[:, None] * w0 * prob.get_val("chord") / prob.get_val("mu")[:, None]
     np.testing.assert_allclose(prob.get_val("reynolds"), reynolds, rtol=1e-9)
 
 
-def test_bem_analysis_reproduces_the_local_design(kind):
+@LOADINGS
+def test_bem_analysis_reproduces_the_local_design(kind, ideal_loading):
     # The blade elements of the local design run at their own (alpha, Re) point of the same polar, with
     # Re = rho W0 c / mu as in the BEM analysis, and Eq. (25) holds, so BEM must return BILD's loads.  The
     # accuracy is that of the two solves (BEM inflow angle, the loops' Newton tolerance), not of the polar
     # model: the polar is evaluated at the same points by both.
     polar = default_polar()
-    prob = _problem(kind)
+    prob = _problem(kind, ideal_loading=ideal_loading)
     result = analyze_rotor(prob.get_val("chord"), prob.get_val("twist"), prob.get_val("radius"),
                            prob.get_val("hub_radius"), prob.get_val("rpm"), prob.get_val("v_axial"), 3, polar,
                            altitude=prob.get_val("altitude"))
@@ -79,9 +86,10 @@ def test_reynolds_independent_polar_gives_the_reference_design(kind):
         np.testing.assert_allclose(local.get_val(name), reference.get_val(name), rtol=1e-9, atol=1e-12)
 
 
+@LOADINGS
 @pytest.mark.parametrize("mode", ["fwd", "rev"])
-def test_totals_complex_step(kind, mode):
-    prob = _problem(kind, complex_step=True, mode=mode, num_radial=5)
+def test_totals_complex_step(kind, mode, ideal_loading):
+    prob = _problem(kind, complex_step=True, mode=mode, num_radial=5, ideal_loading=ideal_loading)
     data = prob.check_totals(of=["thrust", "torque", "energy_loss", "chord", "twist"],
                              wrt=["v_axial", "rpm", "radius", "ref_chord", "ref_radius_ratio", "altitude"],
                              method="cs", out_stream=None)
@@ -92,9 +100,10 @@ def test_totals_complex_step(kind, mode):
     assert_no_approx_partials(prob.model, method="fd")
 
 
-def test_thrust_target_local_design():
-    prob = om.Problem(BILDGroup(num_nodes=2, num_radial=8, section_point="local", thrust_target=True),
-                      reports=False)
+@LOADINGS
+def test_thrust_target_local_design(ideal_loading):
+    prob = om.Problem(BILDGroup(num_nodes=2, num_radial=8, section_point="local", thrust_target=True,
+                                ideal_loading=ideal_loading), reports=False)
     prob.setup()
     prob.set_val("v_axial", [0.0, 15.0])
     prob.set_val("thrust_target", [900.0, 700.0])

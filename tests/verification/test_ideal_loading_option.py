@@ -43,16 +43,14 @@ def test_ideal_loading_is_part_of_the_fingerprint_and_the_default_is_unchanged()
     assert SweepSpec().fingerprint() == SweepSpec(ideal_loading="paper").fingerprint() == DEFAULT_FINGERPRINT
     assert "ideal_loading" not in SweepSpec().to_dict()
     assert SweepSpec(ideal_loading="exact").to_dict()["ideal_loading"] == "exact"
-    settings = [("reference", "paper"), ("reference", "exact"), ("local", "paper")]
+    settings = [("reference", "paper"), ("reference", "exact"), ("local", "paper"), ("local", "exact")]
     prints = {SweepSpec(levels=3, section_point=point, starts=starts, ideal_loading=loading).fingerprint()
               for point, loading in settings for starts in (1, 2)}
-    assert len(prints) == 6
+    assert len(prints) == 8
     case = SweepSpec(levels=2, starts=2, ideal_loading="exact").case(3)
     assert (case.section_point, case.starts, case.ideal_loading) == ("reference", 2, "exact")
     with pytest.raises(ValueError, match="ideal loading must be one of paper, exact, got 'betz'"):
         SweepSpec(ideal_loading="betz")
-    with pytest.raises(ValueError, match=r"^section_point='local' cannot be combined with ideal_loading='exact'"):
-        SweepSpec(section_point="local", ideal_loading="exact")
 
 
 def test_default_store_name_names_the_exact_ideal_loading():
@@ -74,9 +72,9 @@ def test_a_store_of_one_ideal_loading_is_never_resumed_as_the_other(tmp_path):
 
 
 def test_bild_batch_designs_every_start_with_the_sweeps_ideal_loading(monkeypatch):
-    # Start 2 is BILD at the other section point with the same ideal loading, but the local point takes the paper's
-    # only (check_section_setting).  The recorded models are built at the reference point (fast); only the options
-    # the sweep asks for are checked.
+    # Start 2 is BILD at the other section point with the same ideal loading (at the local point the exact loading is
+    # the Reynolds-aware one).  The recorded models are built at the reference point (fast); only the options the
+    # sweep asks for are checked.
     calls = []
 
     def recording(*args, section_point="reference", ideal_loading="paper"):
@@ -86,7 +84,7 @@ def test_bild_batch_designs_every_start_with_the_sweeps_ideal_loading(monkeypatc
     monkeypatch.setattr(case_functions, "bild_problem", recording)
     spec = SweepSpec(levels=2, starts=2, ideal_loading="exact", num_radial=8)
     rows = case_functions.bild_batch(spec.cases([0, 15]))
-    assert calls == [("reference", "exact"), ("local", "paper")]
+    assert calls == [("reference", "exact"), ("local", "exact")]
     assert all(row["converged"] and row["other_chord"] is not None for row in rows)
 
 
