@@ -202,7 +202,6 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
         ``'thrust'`` or ``'torque'``: the force coefficient ``C``.
     alpha_range : tuple of float, optional
         Scan range (rad); default the polar's ``alpha_scan_range`` or -10..25 deg.
-
     both : bool
         Also return the runner-up: the other of the two lowest minima (NaN where the path has one).
     scan_step : float

@@ -124,6 +124,10 @@ def test_two_nearly_equal_minima_take_the_lower():
     for (load, lower, other), alpha in zip(cases, point.alpha):
         assert abs(np.degrees(lower - other)) > 2.0
         assert alpha == pytest.approx(lower, abs=np.radians(5e-3))
+    # both=True also gives the other minimum (the Reynolds-aware exact loading follows both branches).
+    again, runner = solve_local_point(polar, np.full(loads.size, 0.15), loads, both=True)
+    np.testing.assert_array_equal(again.alpha, point.alpha)
+    np.testing.assert_allclose(runner.alpha, [c[2] for c in cases], atol=np.radians(5e-3))
 
 
 def test_implicit_function_derivatives_match_a_re_solve():
