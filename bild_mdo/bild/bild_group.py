@@ -149,8 +149,9 @@ class BILDGroup(om.Group):
         path on which its load per unit span stays fixed while the chord, and
         so ``Re = rho W0 c / mu``, follows from the load
         (:mod:`bild_mdo.bild.local_section_point`); eta2 then uses each
-        station's own ``cd/cl``, and two subgroups with Newton's method close
-        the loops (see :func:`~bild_mdo.bild.chains.add_local_section_chain`).  Extra outputs:
+        station's own ``cd/cl``, and subgroups with Newton's method close the
+        loops (two with the paper's loading, one with the exact loading: see
+        :func:`~bild_mdo.bild.chains.add_local_section_chain`).  Extra outputs:
         ``reynolds[nn, nr]``, ``load_reynolds[nn, nr]``, ``alpha_star_ref,
         cl_star_ref, cd_star_ref``; ``alpha_star, cl_star, cd_star`` are
         ``[nn, nr]`` and ``mach_ref`` is not computed.  Needs a polar that
