@@ -28,8 +28,9 @@ from typing import NamedTuple
 import numpy as np
 
 from bild_mdo.bild.annulus_stationarity import BARRIER, overloaded_angle, unloaded_angle
-from bild_mdo.bild.local_section_point import solve_local_point
+from bild_mdo.bild.local_section_point import LocalPoint, solve_local_point
 from bild_mdo.bild.reynolds_ideal_loading import jacobian, load_reynolds_value, subset, take, terms
+from bild_mdo.utils.batches import isolate_failures
 from bild_mdo.utils.newton import bracketed_newton
 
 #: Inflow angles of the bracketing grid, as fractions of ``[phi0, phi(eta2 = 1/2)]``.
@@ -153,8 +154,8 @@ def solve_stations(polar, flow, drag_to_lift_guess=0.02):
     starts = [(np.zeros(phi_flat.shape), np.ones(phi_flat.shape))] * 2
     if np.any(usable):
         idx = np.flatnonzero(usable)
-        best, runner = solve_local_point(polar, phi_flat[idx], load[idx], flow.chord_form, both=True,
-                                         scan_step=GRID_SCAN_STEP)
+        best, runner, found = _local_points(polar, phi_flat[idx], load[idx], flow.chord_form)
+        usable[idx[~found]] = False
         second = np.isfinite(runner.alpha)
         low = np.where(second & (runner.alpha < best.alpha), runner.alpha, best.alpha)
         low_re = np.where(second & (runner.alpha < best.alpha), runner.reynolds, best.reynolds)
@@ -227,17 +228,32 @@ def solve_stations(polar, flow, drag_to_lift_guess=0.02):
     return StationSolution(phi, alpha, reynolds, status)
 
 
+def _local_points(polar, phi, load, chord_form):
+    """Both minima of the local point at every element; an element without one (ValueError alone) gets NaN.
+
+    Returns ``(lower, runner_up, found)``; the batch is bisected only if it raises
+    (:func:`~bild_mdo.utils.batches.isolate_failures`).
+    """
+    def run(part):
+        return solve_local_point(polar, phi[part], load[part], chord_form, both=True, scan_step=GRID_SCAN_STEP)
+
+    successes, _ = isolate_failures(run, np.arange(phi.size), ValueError)
+    fields = [np.full((2, phi.size), np.nan) for _ in LocalPoint._fields]
+    found = np.zeros(phi.size, dtype=bool)
+    for part, (lower, runner) in successes:
+        found[part] = True
+        for j, field in enumerate(LocalPoint._fields):
+            fields[j][0, part], fields[j][1, part] = getattr(lower, field), getattr(runner, field)
+    return LocalPoint(*(f[0] for f in fields)), LocalPoint(*(f[1] for f in fields)), found
+
+
 def _branch_points(polar, phi, flow, branch, drag_to_lift_guess):
     """Start points on ``branch`` (0: the lower-alpha, 1: the higher-alpha minimum) as on the grid; NaN if none."""
     load = load_reynolds_value(phi, drag_to_lift_guess, flow)
     alpha, reynolds = np.full(phi.shape, np.nan), np.full(phi.shape, np.nan)
     usable = np.flatnonzero(np.isfinite(load) & (load > _MIN_LOAD_REYNOLDS))
     if usable.size:
-        try:
-            best, runner = solve_local_point(polar, phi[usable], load[usable], flow.chord_form, both=True,
-                                             scan_step=GRID_SCAN_STEP)
-        except ValueError:
-            return alpha, reynolds
+        best, runner, _ = _local_points(polar, phi[usable], load[usable], flow.chord_form)
         second = np.isfinite(runner.alpha)
         take_runner = second & ((runner.alpha < best.alpha) == (branch[usable] == 0))
         alpha[usable] = np.where(take_runner, runner.alpha, best.alpha)

@@ -200,3 +200,33 @@ def test_design_does_not_depend_on_the_batch(kind):
         alone.run_model()
         for name in ("chord", "twist"):
             np.testing.assert_allclose(alone.get_val(name)[0], batch.get_val(name)[node], rtol=1e-10, atol=1e-14)
+
+
+def test_a_grid_angle_without_a_local_point_leaves_the_other_stations_alone(monkeypatch):
+    # solve_local_point raises for a whole batch when one path has no minimum; the grid isolates such an
+    # element (utils.batches.isolate_failures) and solves every station as before.  Stand-in: the first grid
+    # angle of station 0 "has no minimum".
+    import bild_mdo.bild.reynolds_ideal_loading_solve as solve
+
+    polar = default_polar()
+    flow = _flow("thrust")
+    before = solve.solve_stations(polar, flow)
+    real = solve.solve_local_point
+    first_angle = solve.unloaded_angle(flow.v_axial[0], flow.v_theta[0]) + solve.GRID_FRACTIONS[0] * (
+        solve.overloaded_angle(flow.v_axial[0], flow.v_theta[0], 0.02) - solve.unloaded_angle(flow.v_axial[0],
+                                                                                              flow.v_theta[0]))
+
+    raised = []
+
+    def no_minimum_at_one_angle(polar_, phi, *args, **kwargs):
+        if np.any(np.isclose(phi, first_angle, rtol=0.0, atol=1e-15)):
+            raised.append(phi.size)
+            raise ValueError("local section point: no interior minimum (stand-in)")
+        return real(polar_, phi, *args, **kwargs)
+
+    monkeypatch.setattr(solve, "solve_local_point", no_minimum_at_one_angle)
+    after = solve.solve_stations(polar, flow)
+    assert raised and raised[-1] == 1  # bisected down to the one element
+    assert np.all(before.status == 0) and np.all(after.status == 0)
+    for field in ("phi", "alpha", "reynolds"):
+        np.testing.assert_array_equal(getattr(after, field)[1:], getattr(before, field)[1:])
