@@ -266,7 +266,7 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
         g_a, g_r, _, _ = _gradient(polar, alpha, re, p[at], q[at], terms)
         return terms.g, g_a - g_r * re * terms.force_a / terms.b, terms.g_scale
 
-    solution = bracketed_newton(residual, lo, hi, g[elem, k], max_iter=_MAX_ITERATIONS)
+    solution = bracketed_newton(residual, lo, hi, g[elem, k], max_iter=_MAX_ITERATIONS, quadratic_stop=True)
     if not np.all(solution.converged):
         bad = int(elem[~solution.converged][0])
         raise ValueError(f"local section point: the Newton solve did not converge in {_MAX_ITERATIONS} iterations at "
