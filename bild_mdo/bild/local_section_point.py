@@ -186,8 +186,7 @@ def _validate(phi, load_reynolds):
                          f"> 0, got min {float(np.min(load_reynolds))!r}")
 
 
-def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_range=None, both=False,
-                      scan_step=_SCAN_STEP):
+def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_range=None, both=False):
     """Minimise ``cd/cl`` along the path of fixed load at every element (module docstring).
 
     Parameters
@@ -204,8 +203,6 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
         Scan range (rad); default the polar's ``alpha_scan_range`` or -10..25 deg.
     both : bool
         Also return the runner-up: the other of the two lowest minima (NaN where the path has one).
-    scan_step : float
-        Step of the bracket scan (rad), default 0.5 deg; minima closer than it may merge into one bracket.
 
     Returns
     -------
@@ -222,7 +219,7 @@ def solve_local_point(polar, phi, load_reynolds, chord_form="thrust", alpha_rang
     load_reynolds = np.asarray(load_reynolds, dtype=float).ravel()
     _validate(phi, load_reynolds)
     low, high = _scan_range(polar, alpha_range)
-    n, grid = phi.size, np.linspace(low, high, max(int(np.ceil((high - low) / scan_step)) + 1, 3))
+    n, grid = phi.size, np.linspace(low, high, max(int(np.ceil((high - low) / _SCAN_STEP)) + 1, 3))
     k_grid = grid.size
     p, q = force_factors(phi, chord_form)
     # Scan: Re on the path at every grid angle, marching in alpha so each inner solve starts close.

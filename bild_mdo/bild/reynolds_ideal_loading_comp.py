@@ -205,8 +205,8 @@ class ReynoldsStationComp(om.ExplicitComponent):
             report_infeasible(self, check, np.any(bad, axis=1), reason, details)
         item = terms(self.options["polar"], solution.phi, solution.alpha, solution.reynolds, flow)
         loaded = solution.status == 0
-        names = [key for key in self._dist.values()] + [key for key in self._node.values()]
-        sens, jac = state_sensitivities(item, names, loaded) if np.any(loaded) else ({}, None)
+        wrt = list(self._dist.values()) + list(self._node.values())
+        sens, jac = state_sensitivities(item, wrt, loaded) if np.any(loaded) else ({}, None)
         self._cache = (key, solution, item, sens, jac)
         return solution, item, sens, jac
 

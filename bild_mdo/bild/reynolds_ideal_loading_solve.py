@@ -35,9 +35,6 @@ from bild_mdo.utils.newton import bracketed_newton
 
 #: Inflow angles of the bracketing grid, as fractions of ``[phi0, phi(eta2 = 1/2)]``.
 GRID_FRACTIONS = np.linspace(0.02, 1.0, 25)
-#: Step of the local point's scan in alpha on the grid (rad).  A 1 deg step halved the time of the levels-3
-#: batch but changed the branch chosen in 9 of 81 designs (minima closer than the step merge), so it stays 0.5.
-GRID_SCAN_STEP = np.radians(0.5)
 #: Load Reynolds numbers below this are left out of the grid (next to no load: the station is unloaded there).
 _MIN_LOAD_REYNOLDS = 1.0e3
 _INNER_ITERATIONS = 30
@@ -156,13 +153,9 @@ def solve_stations(polar, flow, drag_to_lift_guess=0.02):
         idx = np.flatnonzero(usable)
         best, runner, found = _local_points(polar, phi_flat[idx], load[idx], flow.chord_form)
         usable[idx[~found]] = False
-        second = np.isfinite(runner.alpha)
-        low = np.where(second & (runner.alpha < best.alpha), runner.alpha, best.alpha)
-        low_re = np.where(second & (runner.alpha < best.alpha), runner.reynolds, best.reynolds)
-        high = np.where(second & (runner.alpha >= best.alpha), runner.alpha, best.alpha)
-        high_re = np.where(second & (runner.alpha >= best.alpha), runner.reynolds, best.reynolds)
         starts = []
-        for a_, r_ in ((low, low_re), (high, high_re)):
+        for branch in (0, 1):
+            a_, r_ = _on_branch(best, runner, branch)
             alpha0, re0 = np.zeros(phi_flat.shape), np.ones(phi_flat.shape)
             alpha0[idx], re0[idx] = a_, r_
             starts.append((alpha0, re0))
@@ -235,7 +228,9 @@ def _local_points(polar, phi, load, chord_form):
     (:func:`~bild_mdo.utils.batches.isolate_failures`).
     """
     def run(part):
-        return solve_local_point(polar, phi[part], load[part], chord_form, both=True, scan_step=GRID_SCAN_STEP)
+        # The local point's own 0.5 deg scan: a 1 deg scan halved the levels-3 batch time but changed the
+        # branch chosen in 9 of 81 designs (minima closer than the step merge into one bracket).
+        return solve_local_point(polar, phi[part], load[part], chord_form, both=True)
 
     successes, _ = isolate_failures(run, np.arange(phi.size), ValueError)
     fields = [np.full((2, phi.size), np.nan) for _ in LocalPoint._fields]
@@ -247,6 +242,12 @@ def _local_points(polar, phi, load, chord_form):
     return LocalPoint(*(f[0] for f in fields)), LocalPoint(*(f[1] for f in fields)), found
 
 
+def _on_branch(best, runner, branch):
+    """``(alpha, Re)`` of ``branch`` (0: the lower-alpha, 1: the higher-alpha of the two minima; one minimum: it)."""
+    take_runner = np.isfinite(runner.alpha) & ((runner.alpha < best.alpha) == (np.asarray(branch) == 0))
+    return (np.where(take_runner, runner.alpha, best.alpha), np.where(take_runner, runner.reynolds, best.reynolds))
+
+
 def _branch_points(polar, phi, flow, branch, drag_to_lift_guess):
     """Start points on ``branch`` (0: the lower-alpha, 1: the higher-alpha minimum) as on the grid; NaN if none."""
     load = load_reynolds_value(phi, drag_to_lift_guess, flow)
@@ -254,10 +255,7 @@ def _branch_points(polar, phi, flow, branch, drag_to_lift_guess):
     usable = np.flatnonzero(np.isfinite(load) & (load > _MIN_LOAD_REYNOLDS))
     if usable.size:
         best, runner, _ = _local_points(polar, phi[usable], load[usable], flow.chord_form)
-        second = np.isfinite(runner.alpha)
-        take_runner = second & ((runner.alpha < best.alpha) == (branch[usable] == 0))
-        alpha[usable] = np.where(take_runner, runner.alpha, best.alpha)
-        reynolds[usable] = np.where(take_runner, runner.reynolds, best.reynolds)
+        alpha[usable], reynolds[usable] = _on_branch(best, runner, branch[usable])
     return alpha, reynolds
 
 

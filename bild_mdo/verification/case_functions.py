@@ -38,12 +38,11 @@ _MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
 _PROBLEMS = {}
 
 
-def _group_cases(cases, section_points, ideal_loadings=None):
+def _group_cases(cases, section_points):
     """Indices of ``cases`` by BILD model: the :data:`_MODEL_KEYS`, the ideal loading and the section point (last)."""
     groups = {}
     for index, case in enumerate(cases):
-        loading = _ideal_loading(case) if ideal_loadings is None else ideal_loadings[index]
-        key = tuple(case.inputs[k] for k in _MODEL_KEYS) + (loading, section_points[index])
+        key = tuple(case.inputs[k] for k in _MODEL_KEYS) + (_ideal_loading(case), section_points[index])
         groups.setdefault(key, []).append(index)
     return groups
 
@@ -84,8 +83,7 @@ def bild_batch(cases):
     combination; the sweep has one).  Each case is designed at its
     ``section_point`` with its ``ideal_loading``; a case with
     ``starts >= 2`` is also designed at the other section point (same ideal
-    loading; the paper's where the other point is the local one, which
-    refuses the exact loading), the optimiser's second start.  When a
+    loading), the optimiser's second start.  When a
     batch fails (one infeasible design fails the whole vectorised model), it
     is split in halves until every failing case is alone, so each failed case
     gets its own reason and the other cases their designs.
@@ -121,9 +119,8 @@ def bild_batch(cases):
         for row in results:
             row["run_time"] = share
         others = [_other_point(points[i]) for i in second]
-        loadings = [_ideal_loading(cases[i]) for i in second]
         alternatives = [None] * len(cases)
-        for key, members in _group_cases([cases[i] for i in second], others, loadings).items():
+        for key, members in _group_cases([cases[i] for i in second], others).items():
             _bild_group(cases, [second[m] for m in members], alternatives, key[-1], key[-2])
         for i in second:
             usable = alternatives[i]["converged"]

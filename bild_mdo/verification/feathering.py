@@ -3,6 +3,7 @@ import numpy as np
 
 from bild_mdo.bem.analyze import analyze_rotor, station_radii
 from bild_mdo.bem.flow_states import INVALID_STATES
+from bild_mdo.bild.annulus_stationarity import unloaded_angle
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 
 #: Angles of attack (at the unloaded inflow angle) scanned for the twist of a station raised to the chord bound.
@@ -42,13 +43,12 @@ def least_loss_twist(chord, twist, raised, case, num_blades, polar, loss_model):
         ``twist`` with the raised stations' twists replaced.
     """
     nn, nr = chord.shape
-    k = FEATHER_ANGLES.size
+    k = FEATHER_ANGLES.size + 1
     radii = station_radii(case["radius"], case["hub_radius"], nr)
     omega = case["rpm"] * RPM_TO_RAD_PER_S
-    phi0 = np.arctan2(case["v_axial"][:, None], omega[:, None] * radii)
+    phi0 = unloaded_angle(case["v_axial"][:, None], omega[:, None] * radii)
     # BILD's own twist is the first candidate (ties keep it), then the scan.
     trial = np.concatenate([twist[:, None, :], phi0[:, None, :] + FEATHER_ANGLES[None, :, None]], axis=1)
-    k += 1
     trial = np.where(raised[:, None, :], trial, twist[:, None, :]).reshape(nn * k, nr)
 
     def repeat(x):
