@@ -26,7 +26,7 @@ class MILBladeComp(om.ExplicitComponent):
     -------
     num_nodes, num_radial, num_blades : int
         Sizes and the number of blades B.
-    loss_form : {'adkins_liebeck', 'local'}
+    loss_form : {'adkins_liebeck', 'local', 'qmil'}
         Prandtl exponent (see :mod:`bild_mdo.mil.kernel`).
 
     Inputs

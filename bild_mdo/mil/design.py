@@ -72,7 +72,7 @@ def design_mil(thrust=None, *, v_axial, rpm, radius, hub_radius, cl_star, cd_sta
         Shaft power target (W, > 0) instead of ``thrust``.
     num_radial : int
         Stations (midpoints of equal annuli).
-    loss_form : {'adkins_liebeck', 'local'}
+    loss_form : {'adkins_liebeck', 'local', 'qmil'}
         Prandtl exponent (see :class:`~bild_mdo.mil.mil_group.MILGroup`).
 
     Returns

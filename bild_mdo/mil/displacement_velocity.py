@@ -47,7 +47,7 @@ class DisplacementVelocityComp(om.ImplicitComponent):
         Sizes and the number of blades B.
     design_for : {'thrust', 'power'}
         Target quantity.
-    loss_form : {'adkins_liebeck', 'local'}
+    loss_form : {'adkins_liebeck', 'local', 'qmil'}
         Prandtl exponent (see :mod:`bild_mdo.mil.kernel`).
 
     Inputs

@@ -22,7 +22,12 @@ zeta + J2 zeta^2`` (``T_c = 2T/(rho V^2 pi R^2)``, ``P_c = 2P/(rho V^3 pi
 R^2)``).  ``loss_form='local'`` uses instead the tip factor of the package's
 BEM analysis, ``f = (B/2)(1 - xi)/(xi sin(phi))`` (Prandtl with the local flow
 angle), so that a BEM analysis with ``loss_model='tip'`` reproduces the design
-exactly (A&L's "exact agreement of design and analysis").
+exactly (A&L's "exact agreement of design and analysis").  ``loss_form='qmil'``
+is the factor of Drela's QMIL (QPROP distribution, ``src/tpdes.f``): Prandtl's
+exponent with the wake advance ratio ``lambda_w = tan(phi_t)``,
+``f = (B/2)(1 - xi)/lambda_w``, times the root self-induction factor
+``sqrt(1 + (4 lambda_w/(pi B xi))**2)``; with it the design reproduces QMIL's
+(tests/mil/test_qmil_example.py).
 
 Partials are carried forward through these closed forms by the chain rule
 (:class:`Jet`): each quantity holds its value and its exact gradient with
@@ -38,8 +43,8 @@ import numpy as np
 from bild_mdo.bem.prandtl import acos_factor
 from bild_mdo.utils.complex_step import real_part as _real
 
-#: Prandtl tip factor forms: A&L's (tip flow angle) or the BEM analysis's (local flow angle).
-LOSS_FORMS = ("adkins_liebeck", "local")
+#: Prandtl tip factor forms: A&L's (tip flow angle), the BEM analysis's (local flow angle) or QMIL's.
+LOSS_FORMS = ("adkins_liebeck", "local", "qmil")
 #: Order of the gradient entries of a :class:`Jet`.
 VARIABLES = ("speed_ratio", "radius_fraction", "zeta", "drag_to_lift")
 #: Nondimensional variables shared by the MIL components: name -> (radial, description).
@@ -55,7 +60,7 @@ def declare_design_options(options):
     """Declare ``num_blades`` and ``loss_form`` (besides the sizes) on a MIL component's or group's options."""
     options.declare("num_blades", types=int, default=2, desc="number of blades B")
     options.declare("loss_form", default="adkins_liebeck", values=LOSS_FORMS,
-                    desc="Prandtl exponent with the tip ('adkins_liebeck') or local flow angle")
+                    desc="Prandtl factor with the tip ('adkins_liebeck') or local flow angle, or QMIL's ('qmil')")
 
 
 def add_mil_inputs(component, names):
@@ -170,8 +175,9 @@ def station_state(speed_ratio, radius_fraction, zeta, drag_to_lift, num_blades, 
         ``eps = C_d/C_l``, shape ``(nn, 1)``.
     num_blades : int
         Number of blades B.
-    loss_form : {'adkins_liebeck', 'local'}
-        Prandtl exponent with the tip flow angle (A&L) or the local flow angle (BEM analysis).
+    loss_form : {'adkins_liebeck', 'local', 'qmil'}
+        Prandtl exponent with the tip flow angle (A&L), the local flow angle (BEM analysis), or QMIL's
+        factor (the module docstring).
 
     Returns
     -------
@@ -189,9 +195,14 @@ def station_state(speed_ratio, radius_fraction, zeta, drag_to_lift, num_blades, 
     if loss_form == "adkins_liebeck":
         sin_tip = tan_tip / (1.0 + tan_tip * tan_tip).sqrt()
         exponent = (0.5 * num_blades) * (1.0 - xi) / sin_tip
+    elif loss_form == "qmil":
+        exponent = (0.5 * num_blades) * (1.0 - xi) / tan_tip
     else:
         exponent = (0.5 * num_blades) * (1.0 - xi) / (xi * sin_phi)
     loss = _prandtl(exponent)
+    if loss_form == "qmil":
+        root = tan_tip * (4.0 / (np.pi * num_blades)) / xi
+        loss = loss * (1.0 + root * root).sqrt()
     sin_cos = sin_phi * cos_phi
     circulation = loss * (xi / lam) * sin_cos
     thrust_drag = 1.0 - eps * tan_phi

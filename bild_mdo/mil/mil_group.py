@@ -44,10 +44,12 @@ class MILGroup(om.Group):
         Number of blades B (default 2).
     design_for : {'thrust', 'power'}
         Target: ``design_thrust`` (default) or ``design_power``.
-    loss_form : {'adkins_liebeck', 'local'}
+    loss_form : {'adkins_liebeck', 'local', 'qmil'}
         Prandtl exponent with the tip flow angle (A&L, default) or the local
         one (the package's BEM analysis with ``loss_model='tip'``, which then
-        reproduces the design exactly).
+        reproduces the design exactly), or Drela's QMIL factor (wake advance
+        ratio in the exponent and a root self-induction factor:
+        :mod:`bild_mdo.mil.kernel`), to compare with QMIL designs.
     radial_fractions, width_fractions : array_like or None
         User stations (see :class:`~bild_mdo.bem.stations.StationsComp`).
 

@@ -37,7 +37,7 @@ class MILPerformanceComp(om.ExplicitComponent):
         Designs (axis 0) and stations (axis 1).
     num_blades : int
         Number of blades B.
-    loss_form : {'adkins_liebeck', 'local'}
+    loss_form : {'adkins_liebeck', 'local', 'qmil'}
         Form of Prandtl's exponent (:data:`~bild_mdo.mil.kernel.LOSS_FORMS`).
 
     Inputs

@@ -4,21 +4,25 @@ import openmdao.api as om
 import pytest
 
 from bild_mdo.mil.displacement_velocity import DisplacementVelocityComp
+from bild_mdo.mil.kernel import LOSS_FORMS
 from bild_mdo.mil.performance import MILPerformanceComp
 from bild_mdo.utils.testing import check_component_partials
 
 from .conftest import NN, NR, station_values
 
 
+@pytest.mark.parametrize("loss_form", LOSS_FORMS)
 @pytest.mark.parametrize("design_for, target", [("thrust", "design_thrust"), ("power", "design_power")])
-def test_displacement_velocity_partials_and_solve(design_for, target):
+def test_displacement_velocity_partials_and_solve(design_for, target, loss_form):
     values = station_values(3)
     values[target] = np.array([800.0, 1500.0, 300.0]) * (1.0 if design_for == "thrust" else 40.0)
-    comp = DisplacementVelocityComp(num_nodes=NN, num_radial=NR, num_blades=2, design_for=design_for)
+    comp = DisplacementVelocityComp(num_nodes=NN, num_radial=NR, num_blades=2, design_for=design_for,
+                                    loss_form=loss_form)
     prob = check_component_partials(comp, values)
     # The solved zeta reproduces the target through the performance integrals (A&L's two forms).
     perf = om.Problem(reports=False)
-    perf.model.add_subsystem("comp", MILPerformanceComp(num_nodes=NN, num_radial=NR, num_blades=2), promotes=["*"])
+    perf.model.add_subsystem("comp", MILPerformanceComp(num_nodes=NN, num_radial=NR, num_blades=2,
+                                                        loss_form=loss_form), promotes=["*"])
     perf.setup()
     for name, value in values.items():
         if name in ("alpha_star", target):
