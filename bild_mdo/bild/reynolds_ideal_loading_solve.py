@@ -58,10 +58,12 @@ def solve_point(polar, phi, alpha, reynolds, flow):
         if active.size == 0:
             break
         sub = take(flow, active)
-        item = terms(polar, phi[active], alpha[active], reynolds[active], sub)
-        jac = jacobian((item.r2, item.r3), ("alpha", "re"))
-        jac[..., 1] *= reynolds[active, None]  # d/d ln Re
-        rhs = np.stack([item.r2.v, item.r3.v], axis=-1)
+        # A trial angle at (or past) zero load gives non-finite terms: such an element fails (``finite`` below).
+        with np.errstate(divide="ignore", invalid="ignore"):
+            item = terms(polar, phi[active], alpha[active], reynolds[active], sub)
+            jac = jacobian((item.r2, item.r3), ("alpha", "re"))
+            jac[..., 1] *= reynolds[active, None]  # d/d ln Re
+            rhs = np.stack([item.r2.v, item.r3.v], axis=-1)
         finite = np.isfinite(jac).all(axis=(-1, -2)) & np.isfinite(rhs).all(axis=-1)
         jac[~finite] = np.eye(2)
         with np.errstate(all="ignore"):
@@ -289,14 +291,17 @@ def _refine(polar, lo, hi, f_lo, state, flow, ends, branch, drag_to_lift_guess):
                 a_[at], r_[at], ok[at] = a2, r2, ok2
         state["alpha"][idx[ok]], state["re"][idx[ok]] = a_[ok], r_[ok]
         state["ok"][idx] = ok
-        item = terms(polar, x, a_, r_, sub)
-        d_tot = item.d_tot.v
-        below = d_tot > 0.0
-        safe = np.where(below, d_tot, 1.0)
-        g = item.n_tot.v / safe
-        # Total slope of N_tot - g D_tot at lambda = g (Schur complement of the (alpha, Re) block), over D_tot.
-        r1 = item.n_tot - g * item.d_tot
-        slope = _schur(r1, item.r2, item.r3) / safe
+        # An element whose inner solve failed (e.g. a trial angle at zero load) gets NaN, which the bracketed
+        # solver treats as a failed evaluation; its non-finite terms are expected there.
+        with np.errstate(divide="ignore", invalid="ignore"):
+            item = terms(polar, x, a_, r_, sub)
+            d_tot = item.d_tot.v
+            below = d_tot > 0.0
+            safe = np.where(below, d_tot, 1.0)
+            g = item.n_tot.v / safe
+            # Total slope of N_tot - g D_tot at lambda = g (Schur complement of the (alpha, Re) block), over D_tot.
+            r1 = item.n_tot - g * item.d_tot
+            slope = _schur(r1, item.r2, item.r3) / safe
         value = np.where(ok, np.where(below, g - sub.lam, BARRIER), np.nan)
         return value, np.where(below, slope, 1.0), np.abs(g) + np.abs(sub.lam)
 
