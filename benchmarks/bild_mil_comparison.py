@@ -1,4 +1,4 @@
-"""BILD (both section points), minimum-induced-loss design and the full-BEM optimum at the same thrust.
+"""BILD (three variants), minimum-induced-loss design and the full-BEM optimum at the same thrust.
 
 Run:  .venv/bin/python benchmarks/bild_mil_comparison.py [--levels 3] [--airfoil naca4412] [--figure PATH]
 
@@ -9,12 +9,13 @@ c_ref 0.08 ... 0.22 m, 800 rpm, 3 blades, 30 stations, hub 0.2 R) and the
 (:func:`bild_mdo.verification.method_comparison.compare_methods`):
 
 * BILD with the reference section point (the paper's method) for the case's c_ref;
-* BILD with the local section point (if the installed BILDGroup has
-  ``section_point``) for the same thrust (its reference chord follows);
+* BILD with the local section point for the same thrust (its reference chord follows);
+* BILD with the Reynolds-aware exact ideal loading (the local point with
+  ``ideal_loading='exact'``) for the same thrust;
 * the MIL design (Adkins & Liebeck 1994, A&L's tip factor) for the same thrust
   at the same operating point and BILD's reference airfoil point;
 * the full-BEM optimum (SLSQP, min energy loss) for the same thrust: the lower of
-  the runs started from the two BILD designs (the optimum is not unique with the
+  the runs started from the three BILD designs (the optimum is not unique with the
   Reynolds-dependent polar: issue 12);
 
 then every design is trimmed by collective pitch to the optimum's thrust in the
@@ -26,8 +27,8 @@ verification's measure, of the trimmed design; mean, max), the largest pitch
 trim, and the time per design: one design per model run (best of ``--repeats``
 passes through the cases) and one batched run of all cases (per design); the
 optimiser's wall time per case (s, the run from BILD's reference design).
-BILD (local point) is designed for a thrust (``thrust_target=True``), which
-iterates on its reference chord: its times are those of that mode.  Saves a
+BILD's local-point variants are designed for a thrust (``thrust_target=True``),
+which iterates on the reference chord: their times are those of that mode.  Saves a
 figure (energy excess per case and method; chord and twist of the case of
 median BILD excess) to ``--figure``.
 
@@ -46,7 +47,7 @@ from bild_mdo.bem.analyze import station_radii
 from bild_mdo.io.airfoil import airfoil_text
 from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS, TWIST_LIMITS
 from bild_mdo.verification.cases import SweepSpec
-from bild_mdo.verification.method_comparison import METHOD_LABELS, compare_methods, forward_flight_cases
+from bild_mdo.verification.method_comparison import METHOD_LABELS, METHODS, compare_methods, forward_flight_cases
 
 DEFAULT_FIGURE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "output", "bild_mil_comparison.png")
 
@@ -65,9 +66,9 @@ def _pct(value):
 
 
 def format_table(comparison):
-    head = (f"{'method':24s} {'cases':>5s} | {'(E - E_opt)/E_opt (%)':>23s} | {'twist diff (%)':>15s} | "
+    head = (f"{'method':28s} {'cases':>5s} | {'(E - E_opt)/E_opt (%)':>23s} | {'twist diff (%)':>15s} | "
             f"{'chord diff (%)':>15s} | {'max trim':>8s} | {'time per design':>21s}\n"
-            f"{'':24s} {'':5s} | {'mean':>7s} {'worst':>7s} {'best':>7s} | {'mean':>7s} {'max':>7s} | "
+            f"{'':28s} {'':5s} | {'mean':>7s} {'worst':>7s} {'best':>7s} | {'mean':>7s} {'max':>7s} | "
             f"{'mean':>7s} {'max':>7s} | {'(deg)':>8s} | {'single':>10s} {'batched':>10s}")
     lines = [head, "-" * len(head.splitlines()[0])]
     for method in comparison.methods:
@@ -79,14 +80,18 @@ def format_table(comparison):
         columns = [" ".join(_pct(s[f"{name}_{stat}"]) for stat in stats) for name, stats in
                    (("energy_excess", ("mean", "max", "min")), ("twist_error", ("mean", "max")),
                     ("chord_error", ("mean", "max")))]
-        lines.append(f"{METHOD_LABELS[method]:24s} {s['num_cases']:5d} | " + " | ".join(columns)
+        lines.append(f"{METHOD_LABELS[method]:28s} {s['num_cases']:5d} | " + " | ".join(columns)
                      + f" | {np.degrees(s['pitch_offset_max']):8.3f} | {times}")
     return "\n".join(lines)
 
 
 def inside_optimizer_bounds(comparison, method):
-    """Per case: the trimmed design lies inside the optimiser's absolute twist and chord bounds."""
+    """Per case: the trimmed design lies inside the optimiser's absolute twist and chord bounds.
+
+    As trimmed: a zero chord (an unloaded annulus) is held at the lower chord bound by the trim.
+    """
     chord_ratio = comparison.designs[method].chord / np.array([c.inputs["radius"] for c in comparison.cases])[:, None]
+    chord_ratio = np.maximum(chord_ratio, CHORD_RATIO_BOUNDS[0])
     twist = comparison.twist_trimmed[method]
     return (np.all((twist >= TWIST_LIMITS[0]) & (twist <= TWIST_LIMITS[1]), axis=1)
             & np.all((chord_ratio >= CHORD_RATIO_BOUNDS[0]) & (chord_ratio <= CHORD_RATIO_BOUNDS[1]), axis=1))
@@ -109,7 +114,7 @@ def save_figure(comparison, path):
         return
     os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
     fig, (ax_e, ax_c, ax_t) = plt.subplots(1, 3, figsize=(15, 4.5))
-    markers = {"bild_reference": "o", "bild_local": "s", "mil": "^", "optimum": ""}
+    markers = {"bild_reference": "o", "bild_local": "s", "bild_local_exact": "D", "mil": "^", "optimum": ""}
     index = np.arange(len(comparison.cases))
     for method in comparison.methods:
         if method != "optimum":
@@ -172,12 +177,12 @@ def main(argv=None):
                   f"absolute bounds (twist {np.degrees(TWIST_LIMITS[0]):g}..{np.degrees(TWIST_LIMITS[1]):g} deg, "
                   f"c/R {CHORD_RATIO_BOUNDS[0]:g}..{CHORD_RATIO_BOUNDS[1]:g}); their (E - E_opt)/E_opt: "
                   + ", ".join(f"{100.0 * e:+.4f} %" for e in comparison.energy_excess[method][outside]))
-    optimum = comparison.designs["optimum"]
-    if "bild_local" in comparison.designs:
-        start = optimum.extra["start"]
-        print(f"note: BEM optimum = the lower of the SLSQP runs from BILD (reference) and BILD (local); the run from "
-              f"BILD (local) was lower in {int(np.sum(start == 1))} of {int(np.sum(np.isfinite(start)))} cases; "
-              f"optimiser time per case is the run from BILD (reference)")
+    start = comparison.designs["optimum"].extra["start"]
+    starts = [m for m in METHODS if m in comparison.designs and m.startswith("bild_")]
+    print("note: BEM optimum = the lowest of the SLSQP runs from " + ", ".join(METHOD_LABELS[m] for m in starts)
+          + "; the lowest came from " + ", ".join(f"{METHOD_LABELS[m]} in {int(np.sum(start == k))}"
+                                                   for k, m in enumerate(starts))
+          + f" of {int(np.sum(np.isfinite(start)))} cases; optimiser time per case is the run from BILD (reference)")
     save_figure(comparison, args.figure)
     return comparison
 

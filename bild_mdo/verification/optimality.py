@@ -81,6 +81,9 @@ class BildTrim:
     invalid_stations : ndarray of int
         Stations of the trimmed design in an invalid BEM flow state
         (:data:`~bild_mdo.bem.flow_states.INVALID_STATES`), where its loads are not reliable.
+    twist : list of ndarray
+        Per row, the twist of the design as last analysed (rad, ``num_radial`` values): BILD's twist plus
+        the pitch offset, and the twist of least loss at a station whose zero chord was raised to the bound.
     """
 
     case_ids: np.ndarray
@@ -91,6 +94,7 @@ class BildTrim:
     converged: np.ndarray
     iterations: int
     invalid_stations: np.ndarray = None
+    twist: list = None
 
 
 def _row_text(row):
@@ -178,7 +182,8 @@ def _trim_batch(rows, tol, max_iter, first_step, max_step):
         f, energy = analyse(x)
         iterations += 1
     return dict(energy_loss=energy, thrust_residual=f, pitch_offset=x, untrimmed_thrust_error=untrimmed,
-                converged=np.abs(f) <= tol, iterations=iterations, invalid_stations=invalid)
+                converged=np.abs(f) <= tol, iterations=iterations, invalid_stations=invalid,
+                twist=twist + x[:, None])
 
 
 def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, max_step=np.radians(2.0)):
@@ -238,6 +243,7 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
                                                     "untrimmed_thrust_error")}
     out["invalid_stations"] = np.zeros(size, dtype=int)
     converged = np.zeros(size, dtype=bool)
+    twist = [None] * size
     iterations = 0
     groups = {}
     for index, row in enumerate(rows):
@@ -247,9 +253,11 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
         for name in out:
             out[name][indices] = batch[name]
         converged[indices] = batch["converged"]
+        for index, values in zip(indices, batch["twist"]):
+            twist[index] = values
         iterations = max(iterations, batch["iterations"])
     return BildTrim(case_ids=np.array([int(row["case_id"]) for row in rows], dtype=int), converged=converged,
-                    iterations=iterations, **out)
+                    iterations=iterations, twist=twist, **out)
 
 
 @dataclasses.dataclass

@@ -1,4 +1,4 @@
-"""BILD (both section points), MIL and the BEM optimum at the same thrust: invariants on three forward-flight cases.
+"""BILD (three variants), MIL and the BEM optimum at the same thrust: invariants on three forward-flight cases.
 
 Sources of the asserted numbers:
 
@@ -56,7 +56,8 @@ def test_hover_is_refused_before_any_design():
 
 
 def test_every_design_and_every_trim_exists(comparison):
-    for method in ("bild_reference", "mil", "optimum"):
+    assert comparison.methods == list(METHODS)
+    for method in METHODS:
         assert comparison.designs[method].converged.all(), (method, comparison.notes)
         assert np.isfinite(comparison.energy_excess[method]).all(), (method, comparison.notes)
 
@@ -75,13 +76,15 @@ def test_optimum_meets_bild_thrust_and_its_trim_is_round_off(comparison):
     np.testing.assert_allclose(comparison.energy_excess["optimum"], 0.0, atol=1e-12)
 
 
-def test_local_bild_is_designed_for_the_reference_thrust(comparison):
-    if "bild_local" not in comparison.designs:
-        pytest.skip("BILDGroup has no section_point option")
-    local = comparison.designs["bild_local"]
-    ok = local.converged
-    np.testing.assert_allclose(local.extra["thrust"][ok], comparison.designs["bild_reference"].extra["thrust"][ok],
-                               rtol=1e-12)
+@pytest.mark.parametrize("method", ["bild_local", "bild_local_exact"])
+def test_local_bild_is_designed_for_the_reference_thrust(comparison, method):
+    np.testing.assert_allclose(comparison.designs[method].extra["thrust"],
+                               comparison.designs["bild_reference"].extra["thrust"], rtol=1e-12)
+
+
+def test_unknown_variant_is_refused():
+    with pytest.raises(ValueError, match="variants must include 'bild_reference'"):
+        compare_methods(SPEC.cases(CASE_IDS[:1]), variants=("bild_reference", "bild_exact"), repeats=0)
 
 
 def test_no_design_inside_the_bounds_beats_the_optimum(comparison):

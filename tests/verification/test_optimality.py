@@ -180,6 +180,9 @@ def test_zero_bild_chords_are_trimmed_at_the_optimisers_lower_bound(rows):
     assert trims[0].converged.all() and trims[1].converged.all()
     assert trims[0].energy_loss[0] == trims[1].energy_loss[0]
     assert trims[0].pitch_offset[0] == trims[1].pitch_offset[0]
+    # The trim reports the twist it analysed: the twist of least loss at the raised stations, then the pitch offset.
+    np.testing.assert_array_equal(trims[0].twist[0], feathered[0] + trims[0].pitch_offset[0])
+    np.testing.assert_array_equal(trims[1].twist[0], trims[0].twist[0])
 
     def station_loss(t):
         result = analyze_rotor(at_bound[None, :], t[None, :], row["radius"], row["hub_radius"], row["rpm"],
