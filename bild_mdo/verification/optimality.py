@@ -35,13 +35,12 @@ import math
 
 import numpy as np
 
+from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.bem.flow_states import INVALID_STATES
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS
-
-from bild_mdo.airfoil.text import sweep_polar
 
 from .cases import bild_setting
 from .feathering import least_loss_twist
@@ -82,8 +81,8 @@ class BildTrim:
         Stations of the trimmed design in an invalid BEM flow state
         (:data:`~bild_mdo.bem.flow_states.INVALID_STATES`), where its loads are not reliable.
     twist : list of ndarray
-        Per row, the twist of the design as last analysed (rad, ``num_radial`` values): BILD's twist plus
-        the pitch offset, and the twist of least loss at a station whose zero chord was raised to the bound.
+        Per row, the twist as last analysed (rad): BILD's plus the pitch offset (at a zero chord: the
+        twist of least loss plus the offset).
     """
 
     case_ids: np.ndarray
@@ -241,11 +240,8 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     size = len(rows)
     out = {name: np.full(size, np.nan) for name in ("energy_loss", "thrust_residual", "pitch_offset",
                                                     "untrimmed_thrust_error")}
-    out["invalid_stations"] = np.zeros(size, dtype=int)
-    converged = np.zeros(size, dtype=bool)
-    twist = [None] * size
-    iterations = 0
-    groups = {}
+    out["invalid_stations"], converged = np.zeros(size, dtype=int), np.zeros(size, dtype=bool)
+    twist, iterations, groups = {}, 0, {}
     for index, row in enumerate(rows):
         groups.setdefault(tuple(row[k] for k in _MODEL_KEYS), []).append(index)
     for indices in groups.values():
@@ -253,11 +249,10 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
         for name in out:
             out[name][indices] = batch[name]
         converged[indices] = batch["converged"]
-        for index, values in zip(indices, batch["twist"]):
-            twist[index] = values
+        twist.update(zip(indices, batch["twist"]))
         iterations = max(iterations, batch["iterations"])
     return BildTrim(case_ids=np.array([int(row["case_id"]) for row in rows], dtype=int), converged=converged,
-                    iterations=iterations, twist=twist, **out)
+                    iterations=iterations, twist=[twist[i] for i in range(size)], **out)
 
 
 @dataclasses.dataclass
