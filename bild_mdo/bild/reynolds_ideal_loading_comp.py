@@ -14,11 +14,13 @@ from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.exact_ideal_loading import check_reference_annulus
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
-from bild_mdo.bild.reynolds_ideal_loading import Flow, reference_constant, state_sensitivities, terms
-from bild_mdo.bild.reynolds_ideal_loading_solve import solve_stations
+from bild_mdo.bild.reynolds_ideal_loading import Flow, reference_constant, state_sensitivities, take, terms
+from bild_mdo.bild.reynolds_ideal_loading_solve import StationSolution, solve_stations
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node, node_wrt_node
 
+#: Relative change of every input below which a design's stations keep their states (ReynoldsStationComp).
+_SAME_INPUTS = 1.0e-12
 #: Scale of the Reynolds-number outputs (as in local_section_point_comp).
 _REYNOLDS_SCALE = 1.0e5
 _FAILURES = {
@@ -186,16 +188,33 @@ class ReynoldsStationComp(om.ExplicitComponent):
         return _flow(self.options, v_theta=get("v_theta").ravel(), r=get("radii").ravel(), **node)
 
     def _solve(self, inputs):
+        """The stations' solution, sensitivities and Jacobian; only designs whose inputs changed are re-solved.
+
+        Every station is solved on its own given lambda, so a design (node) whose inputs equal those of the
+        last call to ``_SAME_INPUTS`` (relative) keeps its stations' states: a thrust-target solve re-runs the
+        chain for every design on each pass, while most designs have converged (and their lambda, from the
+        reference station's solve, moves by round-off only).  The sensitivities are evaluated at the inputs.
+        """
         names = ("ideal_loading_constant", "v_axial", "v_theta", "radii", "radius", "hub_radius", "rho", "mu")
-        key = np.concatenate([np.real(inputs[name]).ravel() for name in names])
-        if self._cache is not None and np.array_equal(self._cache[0], key):
-            return self._cache[1:]
+        shape = inputs["v_theta"].shape
+        key = np.concatenate([np.real(inputs[name]).reshape(shape[0], -1) for name in names], axis=1)
+        kept = np.zeros(shape[0], dtype=bool)
+        if self._cache is not None:
+            kept = np.all(np.abs(key - self._cache[0]) <= _SAME_INPUTS * np.abs(key), axis=1)
+            if kept.all() and np.array_equal(key, self._cache[0]):
+                return self._cache[1:]
         flow = self._flow(inputs)
+        stations = np.flatnonzero(np.repeat(~kept, shape[1]))
         try:
-            solution = solve_stations(self.options["polar"], flow)
+            part = solve_stations(self.options["polar"], take(flow, stations)) if stations.size else None
         except ValueError as err:
             raise om.AnalysisError(f"{self.msginfo}: {err}") from err
-        shape = inputs["v_theta"].shape
+        if kept.any():
+            solution = StationSolution(*(np.array(field) for field in self._cache[1]))
+            for field, value in zip(solution, part or ()):
+                field[stations] = value
+        else:
+            solution = part
         status = solution.status.reshape(shape)
         for code, (check, reason) in _FAILURES.items():
             bad = status == code

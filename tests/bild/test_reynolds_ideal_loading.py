@@ -21,6 +21,7 @@ from bild_mdo.bild.annulus_stationarity import annulus
 from bild_mdo.bild.local_section_point import solve_local_point
 from bild_mdo.bild.reference_airfoil import default_polar
 from bild_mdo.bild.reynolds_ideal_loading import INPUTS, STATES, Flow, load_reynolds_value, terms
+from bild_mdo.bild import reynolds_ideal_loading_comp as comp_module
 from bild_mdo.bild.reynolds_ideal_loading_comp import ReynoldsIdealLoadingComp, ReynoldsStationComp
 
 # Midpoints of 12 equal annuli from r/R = 0.2 put station 4 at r/R = 0.2 + 4.5 * 0.8/12 = 0.5 (hand derivation).
@@ -200,6 +201,31 @@ def test_design_does_not_depend_on_the_batch(kind):
         alone.run_model()
         for name in ("chord", "twist"):
             np.testing.assert_allclose(alone.get_val(name)[0], batch.get_val(name)[node], rtol=1e-10, atol=1e-14)
+
+
+def test_a_rerun_resolves_only_the_designs_whose_inputs_changed(kind, monkeypatch):
+    # Each station is solved on its own given lambda, so a design whose inputs did not change keeps its states:
+    # after changing node 1's ref_chord, only node 1's stations are solved (the other nodes' lambda moves by
+    # round-off, from the reference station's solve), and every output equals a fresh problem's at the new
+    # inputs, as a node alone equals it in its batch.
+    prob = _problem(kind)
+    solved = []
+    real_solve = comp_module.solve_stations
+    monkeypatch.setattr(comp_module, "solve_stations", lambda polar, flow: solved.append(flow.r.size)
+                        or real_solve(polar, flow))
+    prob.set_val("ref_chord", [0.1, 0.25, 0.3])
+    prob.run_model()
+    assert solved == [NR_REF]
+    monkeypatch.undo()
+    fresh = om.Problem(BILDGroup(num_nodes=3, num_radial=NR_REF, section_point="local", ideal_loading="exact"),
+                       reports=False)
+    fresh.setup()
+    for name, value in dict(v_axial=OPERATING[kind], ref_chord=[0.1, 0.25, 0.3], rpm=[800.0, 900.0, 1000.0],
+                            altitude=[0.0, 1000.0, 2500.0]).items():
+        fresh.set_val(name, value)
+    fresh.run_model()
+    for name in ("chord", "twist", "thrust", "torque"):
+        np.testing.assert_allclose(prob.get_val(name), fresh.get_val(name), rtol=1e-10, atol=1e-14)
 
 
 def test_a_grid_angle_without_a_local_point_leaves_the_other_stations_alone(monkeypatch):
