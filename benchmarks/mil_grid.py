@@ -17,7 +17,8 @@ polar).  Prints:
 * the relative difference between the BEM analysis of the MIL blade and its
   design thrust and power (mean, worst): with ``loss_form='local'`` only the
   polar's Reynolds dependence separates them (A&L's exact agreement of design
-  and analysis), with A&L's own tip factor the two loss models differ as well.
+  and analysis), with A&L's own tip factor and with QMIL's (``'qmil'``) the two
+  loss models differ as well.
 
 Nothing is asserted.
 """

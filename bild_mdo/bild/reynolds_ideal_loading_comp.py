@@ -14,7 +14,15 @@ from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.exact_ideal_loading import check_reference_annulus
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
-from bild_mdo.bild.reynolds_ideal_loading import Flow, reference_constant, state_sensitivities, take, terms
+from bild_mdo.bild.reynolds_ideal_loading import (
+    STATES,
+    Flow,
+    jacobian,
+    reference_constant,
+    state_sensitivities,
+    take,
+    terms,
+)
 from bild_mdo.bild.reynolds_ideal_loading_solve import StationSolution, solve_stations
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node, node_wrt_node
@@ -191,9 +199,10 @@ class ReynoldsStationComp(om.ExplicitComponent):
         """The stations' solution, sensitivities and Jacobian; only designs whose inputs changed are re-solved.
 
         Every station is solved on its own given lambda, so a design (node) whose inputs equal those of the
-        last call to ``_SAME_INPUTS`` (relative) keeps its stations' states: a thrust-target solve re-runs the
-        chain for every design on each pass, while most designs have converged (and their lambda, from the
-        reference station's solve, moves by round-off only).  The sensitivities are evaluated at the inputs.
+        last call to ``_SAME_INPUTS`` (relative) keeps its stations' states, corrected by one Newton step
+        (:meth:`_correct`) where they moved: a thrust-target solve re-runs the chain for every design on each
+        pass, while most designs have converged (and their lambda, from the reference station's solve, moves
+        by round-off only).
         """
         names = ("ideal_loading_constant", "v_axial", "v_theta", "radii", "radius", "hub_radius", "rho", "mu")
         shape = inputs["v_theta"].shape
@@ -213,6 +222,8 @@ class ReynoldsStationComp(om.ExplicitComponent):
             solution = StationSolution(*(np.array(field) for field in self._cache[1]))
             for field, value in zip(solution, part or ()):
                 field[stations] = value
+            moved = kept & ~np.all(key == self._cache[0], axis=1)
+            self._correct(solution, flow, np.flatnonzero(np.repeat(moved, shape[1]) & (solution.status == 0)))
         else:
             solution = part
         status = solution.status.reshape(shape)
@@ -228,6 +239,20 @@ class ReynoldsStationComp(om.ExplicitComponent):
         sens, jac = state_sensitivities(item, wrt, loaded) if np.any(loaded) else ({}, None)
         self._cache = (key, solution, item, sens, jac)
         return solution, item, sens, jac
+
+    def _correct(self, solution, flow, at):
+        """One Newton step on the three residuals at the stations ``at``, whose inputs moved by round-off.
+
+        Their states solved the residuals at inputs within ``_SAME_INPUTS`` (relative) of these, so the step
+        leaves them off by O(``_SAME_INPUTS``**2): as converged as a fresh solve.
+        """
+        if at.size == 0:
+            return
+        near = terms(self.options["polar"], solution.phi[at], solution.alpha[at], solution.reynolds[at], take(flow, at))
+        residual = np.stack([near.r1.v, near.r2.v, near.r3.v], axis=-1)[..., None]
+        step = np.linalg.solve(jacobian((near.r1, near.r2, near.r3), STATES), residual)[..., 0]
+        for k, field in enumerate((solution.phi, solution.alpha, solution.reynolds)):
+            field[at] -= step[:, k]
 
     def _values(self, solution, item):
         loaded = solution.status == 0

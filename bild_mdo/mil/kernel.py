@@ -23,11 +23,12 @@ R^2)``).  ``loss_form='local'`` uses instead the tip factor of the package's
 BEM analysis, ``f = (B/2)(1 - xi)/(xi sin(phi))`` (Prandtl with the local flow
 angle), so that a BEM analysis with ``loss_model='tip'`` reproduces the design
 exactly (A&L's "exact agreement of design and analysis").  ``loss_form='qmil'``
-is the factor of Drela's QMIL (QPROP distribution, ``src/tpdes.f``): Prandtl's
-exponent with the wake advance ratio ``lambda_w = tan(phi_t)``,
-``f = (B/2)(1 - xi)/lambda_w``, times the root self-induction factor
-``sqrt(1 + (4 lambda_w/(pi B xi))**2)``; with it the design reproduces QMIL's
-(tests/mil/test_qmil_example.py).
+is the factor of Drela's QMIL (QPROP distribution: the local formulation of
+``src/gvcalc.f`` that QMIL's design iteration uses; ``src/tpdes.f``, its initial
+guess, has the same form): Prandtl's exponent with the wake advance ratio
+``lambda_w = tan(phi_t)``, ``f = (B/2)(1 - xi)/lambda_w``, times the root
+self-induction factor ``sqrt(1 + (4 lambda_w/(pi B xi))**2)``; with it the
+design reproduces QMIL's (tests/mil/test_qmil_example.py).
 
 Partials are carried forward through these closed forms by the chain rule
 (:class:`Jet`): each quantity holds its value and its exact gradient with

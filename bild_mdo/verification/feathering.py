@@ -5,6 +5,7 @@ from bild_mdo.bem.analyze import analyze_rotor, station_radii
 from bild_mdo.bem.flow_states import INVALID_STATES
 from bild_mdo.bild.annulus_stationarity import unloaded_angle
 from bild_mdo.constants import RPM_TO_RAD_PER_S
+from bild_mdo.optimization.initial_design import TWIST_LIMITS
 
 #: Angles of attack (at the unloaded inflow angle) scanned for the twist of a station raised to the chord bound.
 FEATHER_ANGLES = np.radians(np.arange(-20.0, 20.0 + 0.25, 0.5))
@@ -19,10 +20,12 @@ def least_loss_twist(chord, twist, raised, case, num_blades, polar, loss_model):
     1e2 at c/R = 1e-4) that load can be large.  The optimiser is free to set
     the twist there; so is this trim: each raised station gets, from a scan
     of :data:`FEATHER_ANGLES` about its unloaded inflow angle
-    ``atan(V_x/(Omega r))`` and BILD's own twist, the twist whose own energy
-    loss ``Omega dQ/dr - V_x dT/dr`` is least (BEM stations are independent
-    at a given chord and twist; flow states without a momentum solution are
-    left out).
+    ``atan(V_x/(Omega r))``, clipped to the optimiser's twist limits
+    (:data:`~bild_mdo.optimization.initial_design.TWIST_LIMITS`, so that the
+    trimmed design stays a point the optimiser could reach), and BILD's own
+    twist, the twist whose own energy loss ``Omega dQ/dr - V_x dT/dr`` is least
+    (BEM stations are independent at a given chord and twist; flow states
+    without a momentum solution are left out).
 
     Parameters
     ----------
@@ -48,7 +51,8 @@ def least_loss_twist(chord, twist, raised, case, num_blades, polar, loss_model):
     omega = case["rpm"] * RPM_TO_RAD_PER_S
     phi0 = unloaded_angle(case["v_axial"][:, None], omega[:, None] * radii)
     # BILD's own twist is the first candidate (ties keep it), then the scan.
-    trial = np.concatenate([twist[:, None, :], phi0[:, None, :] + FEATHER_ANGLES[None, :, None]], axis=1)
+    scan = np.clip(phi0[:, None, :] + FEATHER_ANGLES[None, :, None], *TWIST_LIMITS)
+    trial = np.concatenate([twist[:, None, :], scan], axis=1)
     trial = np.where(raised[:, None, :], trial, twist[:, None, :]).reshape(nn * k, nr)
 
     def repeat(x):

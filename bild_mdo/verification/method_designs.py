@@ -24,7 +24,6 @@ CASE_ERRORS = (om.AnalysisError, ValueError, ArithmeticError)
 _BILD_POINT = ("alpha_star", "cl_star", "cd_star")
 
 
-
 @dataclasses.dataclass
 class MethodDesigns:
     """The designs of one method for every case; rows of cases without a design are NaN.

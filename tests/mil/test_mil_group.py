@@ -18,6 +18,7 @@ from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.atmosphere import isa
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.mil import MILGroup, design_mil
+from bild_mdo.mil.kernel import LOSS_FORMS
 from bild_mdo.utils.testing import check_group_totals
 
 CASE = dict(v_axial=49.17, rpm=2400.0, radius=0.875, hub_radius=0.1, num_blades=2)
@@ -84,13 +85,15 @@ def test_hover_and_bad_targets_are_rejected():
         design_mil(-1.0, v_axial=40.0, **kwargs)
 
 
+@pytest.mark.parametrize("loss_form", LOSS_FORMS)
 @pytest.mark.parametrize("design_for", ["thrust", "power"])
-def test_group_totals(design_for):
+def test_group_totals(design_for, loss_form):
     target = f"design_{design_for}"
     values = dict(v_axial=[40.0, 60.0], rpm=[2200.0, 2600.0], radius=[0.8, 0.9], hub_radius=[0.1, 0.12],
                   altitude=[0.0, 1500.0], cl_star=[0.7, 0.9], cd_star=[0.01, 0.015], alpha_star=[0.05, 0.07])
     values[target] = [700.0, 1100.0] if design_for == "thrust" else [3e4, 6e4]
-    check_group_totals(lambda: MILGroup(num_nodes=2, num_radial=4, num_blades=3, design_for=design_for),
+    check_group_totals(lambda: MILGroup(num_nodes=2, num_radial=4, num_blades=3, design_for=design_for,
+                                        loss_form=loss_form),
                        of=["chord", "twist", "zeta", "thrust", "power", "torque", "efficiency"],
                        wrt=["v_axial", "rpm", "radius", "hub_radius", "altitude", target, "cl_star", "cd_star",
                             "alpha_star"], values=values, atol=1e-7, rtol=1e-7)

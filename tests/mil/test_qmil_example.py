@@ -1,8 +1,9 @@
 """A published minimum-induced-loss design reproduced: QMIL's example propeller ``runs/test.mil``.
 
 Source: M. Drela, QMIL 1.13 (10 Nov 2007) and QPROP 1.21, the QPROP/QMIL distribution
-(web.mit.edu/drela/Public/web/qprop), as redistributed unmodified in github.com/gviolato/nemo at commit
-faea3e4241e607b13e6196f3c7acec1c2036a47c, folder ``utils/QpropN``:
+(web.mit.edu/drela/Public/web/qprop), as redistributed in github.com/gviolato/nemo at commit
+faea3e4241e607b13e6196f3c7acec1c2036a47c, folder ``utils/QpropN`` (the run files, ``qmil.f``, ``tpdes.f`` and
+the documents as distributed; some other sources there are modified):
 
 * ``runs/test.mil``, the design input: "Test prop", 4 blades, CL0 = 0, CL_a = 6.2832 /rad, CD0 = CD2u =
   CD2l = 0 (no profile drag), design cl = 1.0 at r/R = 0, 0.5, 1 (constant), hub radius 0.05 m, tip
@@ -15,8 +16,9 @@ faea3e4241e607b13e6196f3c7acec1c2036a47c, folder ``utils/QpropN``:
   printed to 5 significant digits (chord) and 1e-4 deg (beta); its 20th line (r = R) is QMIL's tip
   extrapolation, not a design station.
 
-QMIL designs with Prandtl's factor in the exponent form of ``src/tpdes.f`` (wake advance ratio
-``lambda_w = tan(phi_t)``) times a root self-induction factor: ``MILGroup(loss_form='qmil')``.  Its lift
+QMIL designs with Prandtl's factor in the exponent form of QPROP's local formulation (wake advance ratio
+``lambda_w = tan(phi_t)``; ``src/gvcalc.f``, and ``src/tpdes.f`` for QMIL's initial guess) times a root
+self-induction factor: ``MILGroup(loss_form='qmil')``.  Its lift
 line carries the Prandtl-Glauert factor: ``CL = (CL0 + CL_a alpha)/sqrt(1 - M^2)`` (``qprop_doc.txt``,
 prop file lines 3-4, ``M = W/a``), so the angle of attack for cl = 1 is ``alpha = sqrt(1 - M^2)/CL_a``
 at the station's speed W; MIL design (as A&L) takes one incompressible angle of attack, so the test adds
@@ -74,7 +76,7 @@ def test_qmil_example_is_reproduced_to_its_printed_digits():
 def test_adkins_liebeck_factor_differs_from_qmil_where_the_root_factor_acts():
     # The test can fail: A&L's own factor (sin(phi_t) in the exponent, no root factor) misses QMIL's chord by
     # tens of percent at the root, where QMIL's root self-induction factor sqrt(1 + (4 lambda_w/(pi B xi))**2)
-    # is largest, and by about 2 % at the tip, where the two exponents differ most.
+    # is largest, and by about 2 % at the tip, where F is most sensitive to its exponent.
     design = _design("adkins_liebeck")
     relative = design["chord"] / QMIL_TEST1[:, 1] - 1.0
     assert relative[0] < -0.3

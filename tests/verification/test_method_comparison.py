@@ -6,7 +6,7 @@ Sources of the asserted numbers:
 * the optimisation problem (paper Problem 1, Sec. 5.1): the optimum meets BILD's thrust to
   ``THRUST_TOLERANCE``, and it is a local minimum of the same BEM model within the optimiser's bounds, so no
   design inside those bounds trimmed to its thrust has less energy loss beyond the optimality check's
-  tolerance (``optimality.DEFAULT_TOLERANCE``; the optimum is the lower of the runs from both BILD designs);
+  tolerance (``optimality.DEFAULT_TOLERANCE``; the optimum is the lowest of the runs from the BILD variants' designs);
 * BILDGroup's ``thrust_target`` option: the design's thrust equals the target to 1e-12 relative;
 * Rankine-Froude actuator-disk momentum theory: at thrust T no rotor of radius R exceeds the ideal
   propulsive efficiency ``2 / (1 + sqrt(1 + T_c))``, ``T_c = 2 T / (rho V^2 pi R^2)``; profile drag only
@@ -21,6 +21,7 @@ from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS, TWIST_LIMIT
 from bild_mdo.optimization.result import THRUST_TOLERANCE
 from bild_mdo.verification.cases import SweepSpec
 from bild_mdo.verification.method_comparison import METHODS, compare_methods, forward_flight_cases
+from bild_mdo.verification.method_designs import column
 from bild_mdo.verification.optimality import DEFAULT_TOLERANCE
 
 # 12 stations keep the three optimisations short; J = 1.5 and 3, R = 1 and 1.5 m, altitudes 1500 and 3000 m.
@@ -37,10 +38,6 @@ def rankine_froude_efficiency(thrust, v_axial, rho, radius):
 @pytest.fixture(scope="module")
 def comparison():
     return compare_methods(SPEC.cases(CASE_IDS), repeats=0)  # no timing: nothing here is about time
-
-
-def _column(comparison, key):
-    return np.array([case.inputs[key] for case in comparison.cases])
 
 
 def test_forward_flight_cases_of_levels_3():
@@ -90,9 +87,11 @@ def test_unknown_variant_is_refused():
 def test_no_design_inside_the_bounds_beats_the_optimum(comparison):
     # The optimum is a minimum within the optimiser's bounds only (at J = 3 BILD's local point can put
     # the root twist above 90 deg, outside them); these three cases have every design inside.
-    radius = _column(comparison, "radius")[:, None]
+    radius = column(comparison.cases, "radius")[:, None]
     for method in comparison.methods:
-        twist, chord_ratio = comparison.twist_trimmed[method], comparison.designs[method].chord / radius
+        # As trimmed: a zero chord (an unloaded annulus) is held at the lower chord bound.
+        twist = comparison.twist_trimmed[method]
+        chord_ratio = np.maximum(comparison.designs[method].chord / radius, CHORD_RATIO_BOUNDS[0])
         inside = (np.all((twist >= TWIST_LIMITS[0]) & (twist <= TWIST_LIMITS[1]), axis=1)
                   & np.all((chord_ratio >= CHORD_RATIO_BOUNDS[0]) & (chord_ratio <= CHORD_RATIO_BOUNDS[1]), axis=1))
         excess = comparison.energy_excess[method]
@@ -101,8 +100,8 @@ def test_no_design_inside_the_bounds_beats_the_optimum(comparison):
 
 
 def test_rankine_froude_bounds_every_design_at_the_common_thrust(comparison):
-    v_axial, radius = _column(comparison, "v_axial"), _column(comparison, "radius")
-    rho = np.asarray(isa(_column(comparison, "altitude")).rho)
+    v_axial, radius = column(comparison.cases, "v_axial"), column(comparison.cases, "radius")
+    rho = np.asarray(isa(column(comparison.cases, "altitude")).rho)
     ideal = rankine_froude_efficiency(comparison.thrust, v_axial, rho, radius)
     for method in METHODS:
         if method in comparison.efficiency:
@@ -113,15 +112,15 @@ def test_rankine_froude_bounds_every_design_at_the_common_thrust(comparison):
 def test_drag_free_mil_lies_between_rankine_froude_and_mil_with_drag(comparison):
     bild = comparison.designs["bild_reference"]
     mil = comparison.designs["mil"]
-    v_axial, radius = _column(comparison, "v_axial"), _column(comparison, "radius")
-    kwargs = dict(v_axial=v_axial, rpm=_column(comparison, "rpm"), radius=radius,
-                  hub_radius=_column(comparison, "hub_radius"), altitude=_column(comparison, "altitude"),
+    v_axial, radius = column(comparison.cases, "v_axial"), column(comparison.cases, "radius")
+    kwargs = dict(v_axial=v_axial, rpm=column(comparison.cases, "rpm"), radius=radius,
+                  hub_radius=column(comparison.cases, "hub_radius"), altitude=column(comparison.cases, "altitude"),
                   alpha_star=bild.extra["alpha_star"], cl_star=bild.extra["cl_star"], num_blades=SPEC.num_blades,
                   num_radial=SPEC.num_radial)
     drag_free = design_mil(bild.extra["thrust"], cd_star=0.0, **kwargs)
     np.testing.assert_allclose(drag_free.thrust, bild.extra["thrust"], rtol=1e-10)
     np.testing.assert_allclose(mil.extra["design_thrust"], bild.extra["thrust"], rtol=1e-10)
-    rho = np.asarray(isa(_column(comparison, "altitude")).rho)
+    rho = np.asarray(isa(column(comparison.cases, "altitude")).rho)
     ideal = rankine_froude_efficiency(bild.extra["thrust"], v_axial, rho, radius)
     assert np.all(drag_free.efficiency < ideal)
     assert np.all(mil.extra["efficiency"] < drag_free.efficiency)
