@@ -121,11 +121,11 @@ def test_reference_constant_partials(chord_form):
 
 
 def _problem(kind, complex_step=False, mode="auto", num_radial=NR_REF, num_nodes=3, ideal_loading="exact",
-             **options):
+             ref_chord=(0.1, 0.2, 0.3), **options):
     prob = om.Problem(BILDGroup(num_nodes=num_nodes, num_radial=num_radial, section_point="local",
                                 ideal_loading=ideal_loading, **options), reports=False)
     prob.setup(mode=mode, force_alloc_complex=complex_step)
-    values = dict(v_axial=OPERATING[kind], ref_chord=[0.1, 0.2, 0.3], rpm=[800.0, 900.0, 1000.0],
+    values = dict(v_axial=OPERATING[kind], ref_chord=list(ref_chord), rpm=[800.0, 900.0, 1000.0],
                   altitude=[0.0, 1000.0, 2500.0])
     for name, value in values.items():
         prob.set_val(name, value[:num_nodes] if num_nodes < 3 else value)
@@ -218,13 +218,7 @@ def test_a_rerun_resolves_only_the_designs_whose_inputs_changed(kind, monkeypatc
     prob.run_model()
     assert solved == [NR_REF]
     monkeypatch.undo()
-    fresh = om.Problem(BILDGroup(num_nodes=3, num_radial=NR_REF, section_point="local", ideal_loading="exact"),
-                       reports=False)
-    fresh.setup()
-    for name, value in dict(v_axial=OPERATING[kind], ref_chord=[0.1, 0.25, 0.3], rpm=[800.0, 900.0, 1000.0],
-                            altitude=[0.0, 1000.0, 2500.0]).items():
-        fresh.set_val(name, value)
-    fresh.run_model()
+    fresh = _problem(kind, ref_chord=(0.1, 0.25, 0.3))
     for name in ("chord", "twist", "thrust", "torque"):
         np.testing.assert_allclose(prob.get_val(name), fresh.get_val(name), rtol=1e-10, atol=1e-14)
 
