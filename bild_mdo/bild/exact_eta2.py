@@ -11,7 +11,7 @@ from bild_mdo.bild.airfoil_point import (
     per_station,
 )
 from bild_mdo.bild.annulus_stationarity import residual_partials, solve_stationarity, stationarity
-from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_station_status
 from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.options import add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -101,11 +101,7 @@ class ExactEta2Comp(om.ExplicitComponent):
         phi, status = solve_stationarity(*(a.ravel() for a in args), self.options["num_blades"],
                                          self.options["loss_model"])
         phi, status = phi.reshape(shape), status.reshape(shape)
-        for code, (check, reason) in _FAILURES.items():
-            bad = status == code
-            details = station_details(bad, {"V_x [m/s]": args[1], "V_theta [m/s]": args[2],
-                                            "lambda [m/s]": args[0]})
-            report_infeasible(self, check, np.any(bad, axis=1), reason, details)
+        report_station_status(self, status, _FAILURES, args[1], args[2], args[0])
         self._cache = (key, phi, status)
         return phi, status
 

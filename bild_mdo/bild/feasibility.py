@@ -88,6 +88,19 @@ def report_infeasible(component, key, mask, reason, details):
         raise om.AnalysisError(f"{component.msginfo}: {describe_nodes(mask, reason, details)}")
 
 
+def report_station_status(component, status, failures, v_axial, v_theta, lam):
+    """Report the nodes with a station of each failing ``status`` code (``failures``: code -> (key, reason)).
+
+    ``status`` is ``[nn, nr]``; the details name each node's first failing station with its ``V_x``,
+    ``V_theta`` and ``lambda`` (arrays broadcastable to ``status``).  Used by the per-station solves of the
+    exact ideal loadings.
+    """
+    for code, (key, reason) in failures.items():
+        bad = status == code
+        details = station_details(bad, {"V_x [m/s]": v_axial, "V_theta [m/s]": v_theta, "lambda [m/s]": lam})
+        report_infeasible(component, key, np.any(bad, axis=1), reason, details)
+
+
 def station_details(bad, arrays):
     """Details of a station check: the first failing station of each node, the values there, the count.
 

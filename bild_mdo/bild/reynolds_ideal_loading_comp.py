@@ -13,7 +13,7 @@ import openmdao.api as om
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.exact_ideal_loading import check_reference_annulus
-from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
+from bild_mdo.bild.feasibility import declare_feasibility_option, report_station_status
 from bild_mdo.bild.reynolds_ideal_loading import (
     STATES,
     Flow,
@@ -226,13 +226,8 @@ class ReynoldsStationComp(om.ExplicitComponent):
             self._correct(solution, flow, np.flatnonzero(np.repeat(moved, shape[1]) & (solution.status == 0)))
         else:
             solution = part
-        status = solution.status.reshape(shape)
-        for code, (check, reason) in _FAILURES.items():
-            bad = status == code
-            details = station_details(bad, {"V_x [m/s]": np.real(inputs["v_axial"])[:, None],
-                                            "V_theta [m/s]": np.real(inputs["v_theta"]),
-                                            "lambda [m/s]": np.real(inputs["ideal_loading_constant"])[:, None]})
-            report_infeasible(self, check, np.any(bad, axis=1), reason, details)
+        report_station_status(self, solution.status.reshape(shape), _FAILURES, np.real(inputs["v_axial"])[:, None],
+                              np.real(inputs["v_theta"]), np.real(inputs["ideal_loading_constant"])[:, None])
         item = terms(self.options["polar"], solution.phi, solution.alpha, solution.reynolds, flow)
         loaded = solution.status == 0
         wrt = list(self._dist.values()) + list(self._node.values())
