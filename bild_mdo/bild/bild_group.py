@@ -24,6 +24,7 @@ from bild_mdo.bild.reference_station import REFERENCE_INPUTS, ReferenceStationCo
 from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
 from bild_mdo.bild.rotational_speed import RotationalSpeedComp
 from bild_mdo.bild.thrust_target import ReferenceChordSolver, ThrustTargetComp
+from bild_mdo.utils.linear_solvers import TriangularDirectSolver
 from bild_mdo.utils.options import declare_size_options
 
 INPUT_MODES = ("v_axial", "advance_ratio")
@@ -52,7 +53,8 @@ class BILDGroup(om.Group):
 
     Algorithm 1 of the paper as a feed-forward chain on RunOnce (implicit components solve themselves;
     ``section_point='local'`` and ``thrust_target=True`` add Newton solves).  The linear solver is
-    ``DirectSolver(assemble_jac=True)`` unless the user sets another after construction: totals in
+    ``TriangularDirectSolver(assemble_jac=True)`` (a DirectSolver that factors the chain in dependency
+    order, :mod:`bild_mdo.utils.linear_solvers`) unless the user sets another after construction: totals in
     either mode cost one sparse LU and one back-substitution per seed::
 
         atmosphere (ISA)            altitude -> rho, mu, a
@@ -223,7 +225,7 @@ class BILDGroup(om.Group):
         # One sparse LU per linearisation, then one back-substitution per seed: with LinearRunOnce a
         # reverse compute_totals sweeps the whole chain once per seed (benchmarks/bild_speed.py).  Set
         # here, not in setup, so that a solver the user sets after construction wins.
-        self.linear_solver = om.DirectSolver(assemble_jac=True)
+        self.linear_solver = TriangularDirectSolver(assemble_jac=True)
 
     def initialize(self):
         declare_size_options(self.options)
