@@ -359,11 +359,13 @@ def render():
     lines.append("    return n_term, m_term, b, c\n\n\n")
 
     lines.append(f'def physical_factor_term_partials(eta, {args}, wrt=("eta",) + INPUT_NAMES):\n')
-    lines.append('    """``{name: (dN, dM, db, dc) for name in wrt}`` for ``name`` in ``("eta",) + INPUT_NAMES``."""\n')
-    lines.append("    zero = 0.0 * (eta + v_axial + v_theta + lam + drag_to_lift)\n")
+    lines.append('    """``{name: (dN, dM, db, dc) for name in wrt}`` for ``name`` in ``("eta",) + INPUT_NAMES``.\n\n'
+                 '    Not broadcast to a common shape (a constant partial is a number): they enter products\n'
+                 '    with ``N, M, b, c``, which are (component partials pay for every array operation).\n'
+                 '    """\n')
     lines.append("    partials = {}\n")
     for name in ("eta",) + INPUT_NAMES:
-        body = ", ".join(f"{_code(e, factor=False)} + zero" for e in d["term_partials"][name])
+        body = ", ".join(f"{_code(e, factor=False)}" for e in d["term_partials"][name])
         lines.append(f'    if "{name}" in wrt:\n        partials["{name}"] = ({body})\n')
     lines.append("    return partials\n")
     lines.append(_QUARTIC_HELPERS)

@@ -23,8 +23,12 @@ the exact step's by that relative error times ``STEP_TOL / 2``: below
 1e-12 rad (and below ``STEP_TOL / 2`` whatever the error); the other queries
 continue with exact passes.  With ``derivatives=False`` the
 second derivatives at the point, which only the Reynolds derivatives need,
-are evaluated when those are first used (:class:`TabulatedPoint`): a run of
-BILD without derivatives evaluates the polar once per design.
+come with the first pass where the polar shares their evaluation with the
+values (:meth:`~bild_mdo.airfoil.polar.Polar.evaluate_with_second_derivatives`:
+one spline evaluation of a tabulated polar, about a third dearer than the values
+alone, against a second call of the same cost as the first) and are evaluated
+when first used otherwise (:class:`TabulatedPoint`): a run of BILD without
+derivatives evaluates the polar once per design.
 
 Safeguards: a query falls back to the scan of the exact solver when its grid
 interval is not smooth (a jump of the node values away from their slopes: the
@@ -196,8 +200,8 @@ class TabulatedPoint:
     derivatives does not pay; :meth:`full` gives the complete point (computed once).
     """
 
-    def __init__(self, polar, alpha, values, reynolds, correction, inputs):
-        self._state = (polar, alpha, values, reynolds, correction, inputs)
+    def __init__(self, polar, alpha, values, reynolds, correction, inputs, second=None):
+        self._state = (polar, alpha, values, reynolds, correction, inputs, second)
         self._full = None
         # As point_from_polar_values: the last Newton correction applied to first order.
         self.alpha = np.reshape(alpha + correction, inputs.shape)
@@ -207,8 +211,9 @@ class TabulatedPoint:
     def full(self):
         """The point with its derivatives, a :class:`~bild_mdo.airfoil.max_lift_to_drag.MaxLiftToDrag`."""
         if self._full is None:
-            polar, alpha, values, reynolds, correction, inputs = self._state
-            second = polar.second_derivatives(alpha, reynolds)
+            polar, alpha, values, reynolds, correction, inputs, second = self._state
+            if second is None:
+                second = polar.second_derivatives(alpha, reynolds)
             self._full = point_from_polar_values(alpha, values, second, [inputs], [], inputs.shape, correction)
         return self._full
 
@@ -266,15 +271,24 @@ def max_lift_to_drag_tabulated(polar, reynolds, derivatives=True):
     v = None
     ok = np.zeros(n, dtype=bool)
     active = np.flatnonzero(smooth)
+    # Second derivatives at each query's final angle, where they come with its values at no extra polar call
+    # (a polar that shares them, and the exact passes); the others are evaluated when first used.
+    s = None
+    have_second = np.zeros(n, dtype=bool)
     if active.size:
         # First pass without second derivatives: the Newton step with the table's curvature dg/dalpha
         # (linear in ln Re; module docstring) is applied where it is below STEP_TOL / 2.
-        v = polar.evaluate(guess[active], re_flat[active])
+        if polar.shares_second_derivatives:
+            v, s = polar.evaluate_with_second_derivatives(guess[active], re_flat[active])
+            have_second[active] = True
+        else:
+            v = polar.evaluate(guess[active], re_flat[active])
         with np.errstate(divide="ignore", invalid="ignore"):
             step = -(v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha) / curvature[active]
         last = (np.abs(step) <= 0.5 * STEP_TOL) & (curvature[active] < 0.0) & (v.cl > 0.0) & (v.cd > 0.0)
         if active.size != n:
             v = _scattered(v, active, n)
+            s = _scattered(s, active, n) if s is not None else None
         correction[active[last]] = step[last]
         ok[active[last]] = True
         active = active[~last]
@@ -283,10 +297,15 @@ def max_lift_to_drag_tabulated(polar, reynolds, derivatives=True):
     for _ in range(MAX_PASSES):
         if active.size == 0:
             break
-        va, _, step, good = _newton_pass(polar, alpha[active], re_flat[active],
-                                         _taken(v, active) if known else None)
+        va, sa, step, good = _newton_pass(polar, alpha[active], re_flat[active],
+                                          _taken(v, active) if known else None)
         known = False
         _put(v, active, va)
+        if s is None:
+            s = _scattered(sa, active, n)
+        else:
+            _put(s, active, sa)
+        have_second[active] = True
         good &= np.abs(alpha[active] + step - guess[active]) <= TRUST
         last = good & (np.abs(step) <= STEP_TOL)
         correction[active[last]] = step[last]
@@ -304,5 +323,6 @@ def max_lift_to_drag_tabulated(polar, reynolds, derivatives=True):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             _put(v, fallback, polar.evaluate(exact.alpha, re_flat[fallback]))
-    point = TabulatedPoint(polar, alpha, v, re_flat, correction, reynolds)
+        have_second[fallback] = False
+    point = TabulatedPoint(polar, alpha, v, re_flat, correction, reynolds, s if have_second.all() else None)
     return point.full() if derivatives or np.iscomplexobj(reynolds) else point

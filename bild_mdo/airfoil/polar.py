@@ -202,6 +202,28 @@ class Polar(abc.ABC):
                                                            flat[3])
         return type(second)(*(np.reshape(v, args[0].shape) for v in second))
 
+    def evaluate_with_second_derivatives(self, alpha, reynolds):
+        """:meth:`evaluate` and :meth:`second_derivatives` at real ``alpha``, ``reynolds`` (no Mach number,
+        not along the span), in one evaluation where the polar shares the work of the two (a
+        :class:`~bild_mdo.airfoil.surrogate.TabulatedPolar`: one spline evaluation for both).
+
+        Returns
+        -------
+        tuple of PolarValues and PolarSecondDerivatives
+        """
+        self._require_station()
+        alpha, reynolds = np.broadcast_arrays(np.asarray(_real(alpha), dtype=float),
+                                              np.asarray(_real(reynolds), dtype=float))
+        values, second = self._evaluate_with_second_real(_flat(alpha), _flat(reynolds))
+        return (type(values)(*(np.reshape(v, alpha.shape) for v in values)),
+                type(second)(*(np.reshape(v, alpha.shape) for v in second)))
+
+    @property
+    def shares_second_derivatives(self):
+        """Whether :meth:`evaluate_with_second_derivatives` costs less than its two calls (the polar overrides
+        ``_evaluate_with_second_real``)."""
+        return type(self)._evaluate_with_second_real is not Polar._evaluate_with_second_real
+
     def max_lift_to_drag(self, reynolds, mach=None, radial_fraction=None):
         """Maximum-L/D point ``alpha*, cl*, cd*`` with derivatives.
 
@@ -238,6 +260,10 @@ class Polar(abc.ABC):
         raise NotImplementedError(
             f"{type(self).__name__} does not provide second derivatives, which the "
             "maximum-L/D point needs; implement _second_derivatives_real")
+
+    def _evaluate_with_second_real(self, alpha, reynolds):
+        """``(PolarValues, PolarSecondDerivatives)`` at real flat arrays; default: the two calls."""
+        return self._evaluate_real(alpha, reynolds), self._second_derivatives_real(alpha, reynolds)
 
     def _evaluate_mach_real(self, alpha, reynolds, mach):
         """:class:`MachPolarValues` at real flat arrays; default: independent of Mach number."""

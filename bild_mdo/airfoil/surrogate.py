@@ -351,10 +351,10 @@ class TabulatedPolar(Polar):
             self._warned = True
             how = ("are evaluated at it (one table: lift and drag do not change with Re)" if lo == hi else
                    "are extrapolated from the table's edge (lift linear in log Re, drag a power of Re)")
-            # stacklevel: _compute -> _evaluate_real -> Polar.evaluate -> the caller.
+            # stacklevel: _rows -> _compute -> _evaluate_real -> Polar.evaluate -> the caller.
             warnings.warn(f"{self.name}: Reynolds numbers outside the tabulated range {self.reynolds[0]:.4g}.."
                           f"{self.reynolds[-1]:.4g} {how}; seen {real.min():.4g}..{real.max():.4g} "
-                          "(warned once per polar)", stacklevel=5)
+                          "(warned once per polar)", stacklevel=6)
         return log_re, np.where(inside, log_re, np.clip(np.real(log_re), lo, hi)), inside
 
     def _terms(self, alpha, log_re, rows):
@@ -362,17 +362,13 @@ class TabulatedPolar(Polar):
         grid = (self._alpha0, self._alpha_step, self._n_alpha_cells, self._n_re_cells)
         return spline_terms(self._coef, grid, self._log_re, alpha, log_re, rows)
 
-    def _compute(self, alpha, reynolds, second):
-        """``[c, c_alpha, c_Re]`` (or with ``second`` ``[c_alpha2, c_alpha_Re, c_Re2]``) of cl and of cd.
-
-        Complex-step safe in ``alpha`` and ``reynolds``: the tests check the derivatives with it.
-        """
-        shape, a, r = alpha.shape, alpha.ravel(), reynolds.ravel()
+    def _rows(self, alpha, reynolds, rows):
+        """Rows ``rows`` (:data:`~bild_mdo.airfoil.surrogate_terms.SPLINE_ROWS`) of the terms of cl and cd at flat
+        ``alpha, reynolds``, continued past the table, shape ``(len(rows), 2, n)``."""
+        a, r = alpha.ravel(), reynolds.ravel()
         if not np.all(np.isfinite(a)):
             raise ValueError(f"{self.name}: angle of attack must be finite")
         log_re, edge, inside = self._log_reynolds(r)
-        # f_aa, f_aL, f_L, f_LL or f, f_a, f_L (rows of surrogate_terms.SPLINE_ROWS).
-        rows = (2, 4, 3, 6) if second else (0, 1, 3)
         out = self._terms(a, edge, rows)
         # Past the table: the C^1 continuation (class docstring); one table is constant in Re as it is.
         past = np.flatnonzero(~inside) if self.reynolds.size > 1 else ()
@@ -388,12 +384,43 @@ class TabulatedPolar(Polar):
                 raise ValueError(f"{self.name}: cd extrapolated to Re = {np.real(r[past]).min():.4g}.."
                                  f"{np.real(r[past]).max():.4g} overflows: too far from the table's Reynolds numbers")
             out[:, :, past] = [extrapolated[EXTRAPOLATED_ROWS.index(row)] for row in rows]
-        if second:
-            to_re = per_reynolds({"f_aL": out[1], "f_L": out[2], "f_LL": out[3]}, r)
-            out = (out[0], to_re["f_aRe"], to_re["f_ReRe"])
-        else:
-            out = (out[0], out[1], per_reynolds({"f_L": out[2]}, r)["f_Re"])
+        return out
+
+    @staticmethod
+    def _first(out, reynolds):
+        """``(c, c_alpha, c_Re)`` from rows ``(f, f_a, f_L)``."""
+        return out[0], out[1], per_reynolds({"f_L": out[2]}, reynolds)["f_Re"]
+
+    @staticmethod
+    def _second(out, reynolds):
+        """``(c_alpha2, c_alpha_Re, c_Re2)`` from rows ``(f_aa, f_aL, f_L, f_LL)``."""
+        to_re = per_reynolds({"f_aL": out[1], "f_L": out[2], "f_LL": out[3]}, reynolds)
+        return out[0], to_re["f_aRe"], to_re["f_ReRe"]
+
+    def _compute(self, alpha, reynolds, second):
+        """``[c, c_alpha, c_Re]`` (or with ``second`` ``[c_alpha2, c_alpha_Re, c_Re2]``) of cl and of cd.
+
+        Complex-step safe in ``alpha`` and ``reynolds``: the tests check the derivatives with it.
+        """
+        shape = alpha.shape
+        # f_aa, f_aL, f_L, f_LL or f, f_a, f_L (rows of surrogate_terms.SPLINE_ROWS).
+        out = self._rows(alpha, reynolds, (2, 4, 3, 6) if second else (0, 1, 3))
+        out = (self._second if second else self._first)(out, reynolds.ravel())
         return [x[0].reshape(shape) for x in out], [x[1].reshape(shape) for x in out]
+
+    def _compute_both(self, alpha, reynolds):
+        """:meth:`_compute` without and with ``second`` from one evaluation of the spline."""
+        shape, r = alpha.shape, reynolds.ravel()
+        out = self._rows(alpha, reynolds, (0, 1, 3, 2, 4, 6))
+        first, second = self._first(out[:3], r), self._second(out[[3, 4, 2, 5]], r)
+        return tuple(([x[0].reshape(shape) for x in part], [x[1].reshape(shape) for x in part])
+                     for part in (first, second))
+
+    def _evaluate_with_second_real(self, alpha, reynolds):
+        ((cl, dcl_da, dcl_dre), (cd, dcd_da, dcd_dre)), ((cl_aa, cl_are, cl_rere), (cd_aa, cd_are, cd_rere)) = \
+            self._compute_both(alpha, reynolds)
+        return (PolarValues(cl, cd, dcl_da, dcl_dre, dcd_da, dcd_dre),
+                PolarSecondDerivatives(cl_aa, cl_are, cd_aa, cd_are, cl_rere, cd_rere))
 
     def _evaluate_real(self, alpha, reynolds):
         (cl, dcl_da, dcl_dre), (cd, dcd_da, dcd_dre) = self._compute(alpha, reynolds, second=False)

@@ -136,6 +136,9 @@ def prandtl_loss(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
     """
     if loss_model not in LOSS_MODELS:
         raise ValueError(f"loss_model must be one of {LOSS_MODELS}, got {loss_model!r}")
+    if loss_model != "none" and not any(np.iscomplexobj(x) for x in (phi, r, radius, hub_radius)):
+        if loss_model == "tip" or np.all(np.asarray(hub_radius) > 0.0):
+            return _prandtl_loss_real(phi, r, radius, hub_radius, num_blades, loss_model)
     phi, r, radius, hub_radius = np.broadcast_arrays(phi, r, radius, hub_radius)
     dtype = np.result_type(phi, r, radius, hub_radius, float)
     zero = np.zeros(phi.shape)
@@ -164,6 +167,55 @@ def prandtl_loss(phi, r, radius, hub_radius, num_blades, loss_model="tip_hub"):
         F_hub_r * dFt_dR,
         F_tip_r * dFh_drh,
     )
+
+
+def _factor_real(gap, base, half_b, abs_s, dlog):
+    """Real :func:`_factor` from ``|sin phi|`` (floored) and ``dlog = d|sin phi|/dphi / |sin phi|``: the same
+    formulas, clips and zero derivatives outside the clip, in fewer whole-array operations (ufuncs with
+    ``where=`` instead of ``np.where``/``np.clip``); the caller silences floating-point warnings."""
+    denominator = base * abs_s
+    f = half_b * gap / denominator  # as _exponent: the same rounding, so F is bit-for-bit prandtl_loss's
+    df_dgap = half_b / denominator
+    clipped = np.minimum(np.maximum(f, EXPONENT_MIN), EXPONENT_MAX)
+    value = np.arccos(np.exp(-clipped))
+    value *= 2.0 / np.pi
+    inside = (f > EXPONENT_MIN) & (f < EXPONENT_MAX)
+    # dF/df = 2/pi / sqrt(exp(2 f) - 1) inside the clip, 0 outside (never evaluated there: no overflow).
+    dF_df = np.zeros(inside.shape)
+    np.divide(2.0 / np.pi, np.sqrt(np.expm1(2.0 * clipped)), out=dF_df, where=inside)
+    d_phi = np.multiply(dF_df, clipped, out=np.zeros(inside.shape), where=inside)
+    d_phi *= -dlog
+    d_gap = np.multiply(dF_df, df_dgap, out=np.zeros(inside.shape), where=inside)
+    d_base = np.zeros(inside.shape)
+    np.divide(-dF_df * clipped, base, out=d_base, where=inside)
+    return value, d_phi, d_gap, d_base
+
+
+def _full(x, shape):
+    return x if x.shape == shape else np.broadcast_to(x, shape)
+
+
+def _prandtl_loss_real(phi, r, radius, hub_radius, num_blades, loss_model):
+    """:func:`prandtl_loss` for real arguments (``loss_model`` 'tip' or 'tip_hub', positive hub radii):
+    its values and partials to round-off at a fraction of its cost (component partials call it once per
+    linearisation)."""
+    shape = np.broadcast_shapes(np.shape(phi), np.shape(r), np.shape(radius), np.shape(hub_radius))
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        sin_phi = np.sin(phi)
+        abs_s = np.abs(sin_phi)
+        unfloored = abs_s >= SIN_PHI_FLOOR
+        abs_s = np.maximum(abs_s, SIN_PHI_FLOOR)
+        dlog = np.sign(sin_phi) * np.cos(phi) / abs_s
+        dlog *= unfloored
+        half_b = 0.5 * num_blades
+        tip, dt_phi, dt_gap, dt_base = _factor_real(radius - r, r, half_b, abs_s, dlog)
+        if loss_model == "tip":
+            return PrandtlLoss(_full(tip, shape), _full(dt_phi, shape), _full(dt_base - dt_gap, shape),
+                               _full(dt_gap, shape), np.zeros(shape))
+        hub, dh_phi, dh_gap, dh_base = _factor_real(r - hub_radius, hub_radius, half_b, abs_s, dlog)
+        return PrandtlLoss(_full(tip * hub, shape), _full(hub * dt_phi + tip * dh_phi, shape),
+                           _full(hub * (dt_base - dt_gap) + tip * dh_gap, shape), _full(hub * dt_gap, shape),
+                           _full(tip * (dh_base - dh_gap), shape))
 
 
 def _exponent(half_b, gap, base, abs_s):

@@ -186,19 +186,21 @@ class MomentumLoadsComp(om.ExplicitComponent):
         loss, u_axial, u_t, r, v_x, rho, omega, t_no_f, q_no_f = self._terms(inputs)
         f = loss.F
         thrust, torque = t_no_f * f, q_no_f * f
-        # Placeholder loads of unloaded nodes (inside a BILDGroup) are constants.
-        keep = ~self._unloaded(torque)[:, None]
-
+        # Placeholder loads of unloaded nodes (inside a BILDGroup) are constants: their partials are zero.
+        unloaded = self._unloaded(torque)
+        keep = ~unloaded[:, None] if unloaded.any() else None
+        w_t = (4.0 * np.pi) * rho * r * f  # dT/dr = w_t u_axial (u_axial - V_x)
+        w_q = (2.0 * np.pi) * rho * r * r * f  # dQ/dr = w_q u_axial u_theta
         d_thrust = {
-            "u_axial": 4.0 * np.pi * rho * (2.0 * u_axial - v_x) * r * f,
-            "radii": t_no_f / r * f + t_no_f * loss.dF_dr,
-            "v_axial": -4.0 * np.pi * rho * u_axial * r * f,
+            "u_axial": w_t * (2.0 * u_axial - v_x),
+            "radii": (t_no_f / r) * f + t_no_f * loss.dF_dr,
+            "v_axial": -w_t * u_axial,
             "rho": thrust / rho,
         }
         d_torque = {
-            "u_axial": 2.0 * np.pi * rho * u_t * r ** 2 * f,
-            "u_theta": 2.0 * np.pi * rho * u_axial * r ** 2 * f,
-            "radii": 2.0 * q_no_f / r * f + q_no_f * loss.dF_dr,
+            "u_axial": w_q * u_t,
+            "u_theta": w_q * u_axial,
+            "radii": (2.0 * q_no_f / r) * f + q_no_f * loss.dF_dr,
             "rho": torque / rho,
         }
         d_loss = loss_partials(loss, self.options["loss_model"])
@@ -210,14 +212,23 @@ class MomentumLoadsComp(om.ExplicitComponent):
             for name in self._loss_inputs():
                 partials["loss_factor", name] = d_loss[name].ravel()
 
+        if keep is not None:
+            d_thrust = {name: keep * value for name, value in d_thrust.items()}
+            d_torque = {name: keep * value for name, value in d_torque.items()}
         for name, value in d_thrust.items():
-            partials["dthrust_dr", name] = (keep * value).ravel()
+            partials["dthrust_dr", name] = value.ravel()
         for name, value in d_torque.items():
-            partials["dtorque_dr", name] = (keep * value).ravel()
+            partials["dtorque_dr", name] = value.ravel()
+        # dE/dr = Omega dQ/dr - V_x dT/dr.
         for name in set(d_thrust) | set(d_torque):
-            value = omega * d_torque.get(name, 0.0) - v_x * d_thrust.get(name, 0.0)
-            value = keep * np.broadcast_to(value, u_axial.shape)
+            if name in d_thrust and name in d_torque:
+                value = omega * d_torque[name] - v_x * d_thrust[name]
+            elif name in d_torque:
+                value = omega * d_torque[name]
+            else:
+                value = -v_x * d_thrust[name]
             if name == "v_axial":
-                value = value - np.where(keep, thrust, 1.0)  # dE/dV_x = -dT/dr (placeholder 1)
+                value = value - (thrust if keep is None else np.where(keep, thrust, 1.0))  # dE/dV_x -= dT/dr
             partials["denergy_loss_dr", name] = value.ravel()
-        partials["denergy_loss_dr", "rpm"] = (RPM_TO_RAD_PER_S * np.where(keep, torque, 1.0)).ravel()
+        partials["denergy_loss_dr", "rpm"] = (RPM_TO_RAD_PER_S * (torque if keep is None
+                                                                  else np.where(keep, torque, 1.0))).ravel()

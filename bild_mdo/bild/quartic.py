@@ -88,19 +88,22 @@ def physical_factor_terms(eta, v_axial, v_theta, lam, drag_to_lift):
 
 
 def physical_factor_term_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt=("eta",) + INPUT_NAMES):
-    """``{name: (dN, dM, db, dc) for name in wrt}`` for ``name`` in ``("eta",) + INPUT_NAMES``."""
-    zero = 0.0 * (eta + v_axial + v_theta + lam + drag_to_lift)
+    """``{name: (dN, dM, db, dc) for name in wrt}`` for ``name`` in ``("eta",) + INPUT_NAMES``.
+
+    Not broadcast to a common shape (a constant partial is a number): they enter products
+    with ``N, M, b, c``, which are (component partials pay for every array operation).
+    """
     partials = {}
     if "eta" in wrt:
-        partials["eta"] = (2*drag_to_lift*v_axial*v_theta + 2*v_axial*(lam + v_axial) + 4*v_theta**2*(1 - eta) - v_theta**2*(4*eta - 1) + zero, 4*lam + 4*v_axial + zero, 0 + zero, -eta*v_theta**2 + v_theta*(drag_to_lift*v_axial + v_theta*(1 - eta)) + zero)
+        partials["eta"] = (2*drag_to_lift*v_axial*v_theta + 2*v_axial*(lam + v_axial) + 4*v_theta**2*(1 - eta) - v_theta**2*(4*eta - 1), 4*lam + 4*v_axial, 0, -eta*v_theta**2 + v_theta*(drag_to_lift*v_axial + v_theta*(1 - eta)))
     if "v_axial" in wrt:
-        partials["v_axial"] = (2*drag_to_lift*eta*v_theta + v_axial*(2*eta - 1) + (2*eta - 1)*(lam + v_axial) + zero, 4*eta - 3 + zero, 1/2 + zero, drag_to_lift*eta*v_theta + zero)
+        partials["v_axial"] = (2*drag_to_lift*eta*v_theta + v_axial*(2*eta - 1) + (2*eta - 1)*(lam + v_axial), 4*eta - 3, 1/2, drag_to_lift*eta*v_theta)
     if "v_theta" in wrt:
-        partials["v_theta"] = (2*drag_to_lift*eta*v_axial + 2*v_theta*(1 - eta)*(4*eta - 1) + zero, 2*drag_to_lift + zero, -1/2*drag_to_lift + zero, eta*v_theta*(1 - eta) + eta*(drag_to_lift*v_axial + v_theta*(1 - eta)) + zero)
+        partials["v_theta"] = (2*drag_to_lift*eta*v_axial + 2*v_theta*(1 - eta)*(4*eta - 1), 2*drag_to_lift, -1/2*drag_to_lift, eta*v_theta*(1 - eta) + eta*(drag_to_lift*v_axial + v_theta*(1 - eta)))
     if "lam" in wrt:
-        partials["lam"] = (v_axial*(2*eta - 1) + zero, 4*eta - 2 + zero, 0 + zero, 0 + zero)
+        partials["lam"] = (v_axial*(2*eta - 1), 4*eta - 2, 0, 0)
     if "drag_to_lift" in wrt:
-        partials["drag_to_lift"] = (2*eta*v_axial*v_theta + zero, 2*v_theta + zero, -1/2*v_theta + zero, eta*v_axial*v_theta + zero)
+        partials["drag_to_lift"] = (2*eta*v_axial*v_theta, 2*v_theta, -1/2*v_theta, eta*v_axial*v_theta)
     return partials
 
 
