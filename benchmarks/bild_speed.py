@@ -20,9 +20,11 @@ built-in NACA 4412 polar and ``num_radial = 30``:
   respect to every input: v_axial, rpm, radius, hub and reference radius
   ratios, ref_chord, altitude) in fwd and rev mode, each timed right after the
   ``run_model`` of the same design, and the ratio of the two; once with the
-  group's linear solver as shipped (``DirectSolver(assemble_jac=True)``: one
-  sparse LU per linearisation, then one back-substitution per seed) and once
-  with ``LinearRunOnce`` set by the user (one sweep of the chain per seed);
+  group's linear solver as shipped (``TriangularDirectSolver(assemble_jac=True)``,
+  :mod:`bild_mdo.utils.linear_solvers`: the Jacobian factored in dependency
+  order, one back-substitution per forward seed, the reverse seeds of one
+  variable in one back-substitution by levels) and once with ``LinearRunOnce``
+  set by the user (one sweep of the chain per seed);
 * every time twice: wall time (``time.perf_counter``) and the CPU time of this
   thread (``time.thread_time``), which other processes on a shared machine
   do not inflate; the ratios are given for both;
@@ -208,7 +210,7 @@ def main(repeats=40):
 
     size = 2 + 2 * NUM_RADIAL
     for run_once in (False, True):
-        label = "LinearRunOnce set by the user" if run_once else "as shipped, DirectSolver(assemble_jac=True)"
+        label = "LinearRunOnce set by the user" if run_once else "as shipped, TriangularDirectSolver"
         for mode in ("fwd", "rev"):
             run, total, run_cpu, total_cpu = totals(designs, polar, mode, max(repeats // 2, 10), run_once)
             print(f"  compute_totals ({size} x {len(INPUTS)}), {mode}, {label}: median {total * 1e3:7.3f} ms "

@@ -55,7 +55,8 @@ class BILDGroup(om.Group):
     ``section_point='local'`` and ``thrust_target=True`` add Newton solves).  The linear solver is
     ``TriangularDirectSolver(assemble_jac=True)`` (a DirectSolver that factors the chain in dependency
     order, :mod:`bild_mdo.utils.linear_solvers`) unless the user sets another after construction: totals in
-    either mode cost one sparse LU and one back-substitution per seed::
+    either mode cost one sparse factorisation and one back-substitution per seed (per variable of reverse
+    seeds)::
 
         atmosphere (ISA)            altitude -> rho, mu, a
         [advance_ratio]             J, rpm, R -> V_x            (input_mode='advance_ratio')
@@ -222,9 +223,11 @@ class BILDGroup(om.Group):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        # One sparse LU per linearisation, then one back-substitution per seed: with LinearRunOnce a
-        # reverse compute_totals sweeps the whole chain once per seed (benchmarks/bild_speed.py).  Set
-        # here, not in setup, so that a solver the user sets after construction wins.
+        # One sparse factorisation (without fill: the chain is triangular in dependency order) per
+        # linearisation, then one back-substitution per seed (per variable of reverse seeds): with
+        # LinearRunOnce a reverse compute_totals sweeps the whole chain once per seed
+        # (benchmarks/bild_speed.py).  Set here, not in setup, so that a solver the user sets after
+        # construction wins.
         self.linear_solver = TriangularDirectSolver(assemble_jac=True)
 
     def initialize(self):

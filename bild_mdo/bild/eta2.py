@@ -8,7 +8,7 @@ from bild_mdo.bild.airfoil_point import (
     declare_spanwise_option,
     per_station,
 )
-from bild_mdo.bild.quartic import physical_factor_term_partials, physical_factor_terms, quartic, quartic_partials
+from bild_mdo.bild.quartic import quartic, quartic_and_partials, quartic_partials
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.newton import bracketed_newton, complex_step_update, false_position
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
@@ -420,14 +420,8 @@ class Eta2Comp(om.ImplicitComponent):
         v_x, v_t, lam, s = self._arguments(inputs)
         eta = outputs["eta2"]
         scale = self._scale(v_x, v_t, lam)
-        # P and its partials from one evaluation of N, M, b, c (quartic and quartic_partials each make one).
-        n_term, m_term, b, c = physical_factor_terms(eta, v_x, v_t, lam, s)
-        residual = (n_term * (n_term - 2.0 * b * m_term) - c * m_term * m_term) / scale
-        dp_dn, dp_dm = 2.0 * (n_term - b * m_term), -2.0 * (b * n_term + c * m_term)
-        dp_db, dp_dc = -2.0 * n_term * m_term, -m_term * m_term
-        factors = (dp_dn, dp_dm, dp_db, dp_dc)
-        dp = {name: sum(f * d for f, d in zip(factors, terms) if not (np.isscalar(d) and d == 0))
-              for name, terms in physical_factor_term_partials(eta, v_x, v_t, lam, s).items()}
+        p, dp = quartic_and_partials(eta, v_x, v_t, lam, s)
+        residual = p / scale
         # d(P/S) = (dP - R dS)/S with dS = 4 sqrt(S) x dx for x in (V_x, V_theta, lam).
         root_scale = np.sqrt(scale)
         d_vx = (dp["v_axial"] - residual * 4.0 * root_scale * v_x) / scale

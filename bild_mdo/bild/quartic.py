@@ -120,13 +120,22 @@ def quartic(eta, v_axial, v_theta, lam, drag_to_lift):
 
 def quartic_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt=("eta",) + INPUT_NAMES):
     """First partials of ``P(eta)`` (same form as :func:`quartic`): ``{name: dP/dname for name in wrt}``."""
+    return quartic_and_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt)[1]
+
+
+def quartic_and_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt=("eta",) + INPUT_NAMES):
+    """:func:`quartic` and :func:`quartic_partials` from one evaluation of ``N, M, b, c``.
+
+    ``dP = 2 (N - b M) dN - 2 (b N + c M) dM - 2 N M db - M**2 dc``; a term whose partial is the
+    number 0 is left out (each array operation counts in component partials).
+    """
     n_term, m_term, b, c = physical_factor_terms(eta, v_axial, v_theta, lam, drag_to_lift)
-    partials = {}
-    for name, (dn, dm, db, dc) in physical_factor_term_partials(
-            eta, v_axial, v_theta, lam, drag_to_lift, wrt=wrt).items():
-        partials[name] = (2.0 * (n_term - b * m_term) * dn - 2.0 * (b * n_term + c * m_term) * dm
-                          - 2.0 * n_term * m_term * db - m_term * m_term * dc)
-    return partials
+    factors = (2.0 * (n_term - b * m_term), -2.0 * (b * n_term + c * m_term), -2.0 * n_term * m_term,
+               -m_term * m_term)
+    partials = {name: sum(f * d for f, d in zip(factors, terms) if not (np.isscalar(d) and d == 0))
+                for name, terms in physical_factor_term_partials(
+                    eta, v_axial, v_theta, lam, drag_to_lift, wrt=wrt).items()}
+    return n_term * (n_term - 2.0 * b * m_term) - c * m_term * m_term, partials
 
 
 def axial_velocity_root(b, c):

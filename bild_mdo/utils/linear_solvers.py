@@ -13,6 +13,17 @@ order with diagonal pivots the factors add no entry to the matrix (``L`` is the
 matrix's lower triangle, ``U`` its diagonal): 0.11 ms and 12 us on the same
 machine (benchmarks/bild_speed.py prints the totals this changes).
 
+A reverse ``compute_totals`` asks for one solve with the transpose per output
+entry (62 for one BILD design: thrust, torque, 30 chords, 30 twists), each seed
+a unit vector.  The first seed of a variable solves the rest of that
+variable's seeds with it, by levels of the dependency graph (one sparse product
+per level for all of them), and the others are served from that block until
+the next linearisation: 7 us per seed against 16 us for one SuperLU
+back-substitution each.  The two costly parts of OpenMDAO's linearisation of
+such a chain are replaced too: the assembly of the CSC matrix from its
+sub-Jacobians (:class:`BatchedCSCJacobian`: one scatter, 0.22 ms against
+1.3 ms) and the per-call checks of ``DirectSolver.solve``.
+
 Diagonal pivots are exact here: a triangular solve needs no pivoting (it is
 backward stable whatever the sizes of its entries).  The order is computed once
 per sparsity structure (levels of the dependency graph, vectorised) and reused
@@ -309,7 +320,7 @@ class TriangularDirectSolver(om.DirectSolver):
             for _, start, stop in system._doutputs.ranges():
                 stops[start:stop] = stop
             self._variable_stops = (size, stops)
-        stop = min(int(self._variable_stops[1][unknown]), unknown + SEED_BLOCK,
+        stop = min(int(self._variable_stops[1][unknown]), size, unknown + SEED_BLOCK,
                    unknown + max(SEED_BLOCK_ENTRIES // size, 1))
         if stop - unknown < 2 or _csr_matvecs is None or self._lu._permuted.dtype != np.float64:
             return None

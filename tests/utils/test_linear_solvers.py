@@ -99,3 +99,33 @@ def test_a_coupled_loop_falls_back_to_the_plain_direct_solver():
     assert prob.get_val("loop.cx.x")[0] == pytest.approx(4.0, rel=1e-12)
     assert totals["loop.cx.x", "ivc.a"][0, 0] == pytest.approx(4.0 / 3.0, rel=1e-12)
     assert not isinstance(loop.linear_solver._lu, _PermutedLU)
+
+
+@pytest.mark.parametrize("mode", ["fwd", "rev"])
+def test_reverse_seeds_solved_by_variable_inside_a_subgroup_match_the_hand_derivation(mode):
+    # The chain of _chain inside a subgroup (its own TriangularDirectSolver), a component after it at the top:
+    # the subgroup's vectors are views into the model's, so a variable's range must be found in the view.
+    model = om.Group()
+    model.add_subsystem("ivc", om.IndepVarComp("x", val=np.array([0.5, 1.0, 2.0]), units="m"))
+    sub = model.add_subsystem("sub", om.Group())
+    sub.add_subsystem("lin", om.ExecComp("y = 2.0 * a + 0.03 * b", y=np.ones(3), a={"val": np.ones(3), "units": "m"},
+                                         b={"val": np.ones(3), "units": "cm"}, has_diag_partials=True))
+    sub.add_subsystem("cubic", _Cubic())
+    sub.connect("lin.y", "cubic.y")
+    sub.linear_solver = TriangularDirectSolver(assemble_jac=True)
+    model.add_subsystem("sum", om.ExecComp("w = sum(z ** 2)", z=np.ones(3)))
+    model.connect("ivc.x", ["sub.lin.a", "sub.lin.b"])
+    model.connect("sub.cubic.z", "sum.z")
+    prob = om.Problem(model, reports=False)
+    prob.setup(mode=mode)
+    prob.run_model()
+    for _ in range(2):
+        totals = prob.compute_totals(of=["sub.cubic.z", "sub.lin.y", "sum.w"], wrt=["ivc.x"])
+    x, z = np.array([0.5, 1.0, 2.0]), prob.get_val("sub.cubic.z")
+    dz_dx = 5.0 / (3.0 * z ** 2 + 1.0)
+    np.testing.assert_allclose(totals["sub.cubic.z", "ivc.x"], np.diag(dz_dx), rtol=1e-14, atol=1e-300)
+    np.testing.assert_allclose(totals["sub.lin.y", "ivc.x"], 5.0 * np.eye(3), rtol=1e-14, atol=1e-300)
+    np.testing.assert_allclose(totals["sum.w", "ivc.x"], [2.0 * z * dz_dx], rtol=1e-14)
+    np.testing.assert_allclose(z ** 3 + z, 5.0 * x, rtol=1e-14)
+    # Reverse: the seeds of each 3-entry variable were solved as one block (none in forward mode).
+    assert (len(sub.linear_solver._seeds) > 0) == (mode == "rev")
