@@ -110,6 +110,8 @@ class _PermutedLU:
         self._position[order] = np.arange(order.size)
         self._permuted = permuted
         self._bounds = np.concatenate([[0], np.cumsum(level_sizes)])
+        self._inverse_diagonal = None
+        self._levels = None  # per level: start, stop, its column pointers from 0, its entries' slice
 
     def solve(self, rhs, trans="N"):
         # Gathers only (np.take): x = P^T y with y = LU^{-1} P b, P b = b[order], (P^T y) = y[position].
@@ -123,22 +125,30 @@ class _PermutedLU:
         ``A_p[k, j] != 0`` needs ``j`` and so lies in a later level, already solved.  The
         columns of a level in the CSC matrix are the rows of ``A_p^T``: one sparse-times-dense
         product per level (SciPy's compiled ``csr_matvecs`` on slices of the matrix, no copy;
-        the diagonal multiplies the still-zero ``y_j``).
+        the diagonal multiplies the still-zero ``y_j``).  Levels after the last seed's are zero
+        and skipped; a seed ``c_j = 1`` is added where its level is solved.
         """
         matrix = self._permuted
         n, m = matrix.shape[0], len(unknowns)
-        rhs = np.zeros((n, m))
-        rhs[self._position[unknowns], np.arange(m)] = 1.0
+        if self._levels is None:
+            indptr = matrix.indptr
+            self._inverse_diagonal = -1.0 / matrix.diagonal()
+            self._levels = [(start, stop, indptr[start:stop + 1] - indptr[start], slice(indptr[start], indptr[stop]))
+                            for start, stop in zip(self._bounds[:-1].tolist(), self._bounds[1:].tolist())]
+        minus_inverse_diagonal = self._inverse_diagonal
+        seeds = self._position[unknowns]
+        seed_level = np.searchsorted(self._bounds, seeds, side="right") - 1
         y = np.zeros((n, m))
         flat = y.reshape(-1)
-        data, indices, indptr = matrix.data, matrix.indices, matrix.indptr
-        diagonal = matrix.diagonal()
-        for start, stop in zip(self._bounds[-2::-1], self._bounds[:0:-1]):
-            lo, hi = indptr[start], indptr[stop]
+        data, indices = matrix.data, matrix.indices
+        for level in range(int(seed_level.max()), -1, -1):
+            start, stop, pointers, entries = self._levels[level]
             sums = np.zeros((stop - start, m))
-            _csr_matvecs(stop - start, n, m, indptr[start:stop + 1] - lo, indices[lo:hi], data[lo:hi], flat,
-                         sums.reshape(-1))
-            y[start:stop] = (rhs[start:stop] - sums) / diagonal[start:stop, None]
+            _csr_matvecs(stop - start, n, m, pointers, indices[entries], data[entries], flat, sums.reshape(-1))
+            np.multiply(sums, minus_inverse_diagonal[start:stop, None], out=y[start:stop])
+            if level in seed_level:
+                here = np.flatnonzero(seed_level == level)
+                y[seeds[here], here] -= minus_inverse_diagonal[seeds[here]]
         return np.asfortranarray(y[self._position])
 
 
