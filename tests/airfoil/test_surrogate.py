@@ -257,3 +257,20 @@ def test_naca4412_drag_positive_everywhere(naca):
     alpha, reynolds = np.meshgrid(np.linspace(-np.pi, np.pi, 1441), np.geomspace(5e4, 2e6, 60))
     assert np.all(naca.evaluate(alpha, reynolds).cd > 0.0)
 
+
+
+@pytest.mark.parametrize("polar_kind", ["surrogate", "analytic"])
+def test_values_with_second_derivatives_are_the_two_calls(surrogate, polar_kind):
+    # One spline evaluation for both (TabulatedPolar) or the two calls (the base class default): the same numbers,
+    # inside the table and past both of its edges (the C1 continuation), in the broadcast shape.
+    polar = surrogate if polar_kind == "surrogate" else AnalyticPolar()
+    assert polar.shares_second_derivatives == (polar_kind == "surrogate")
+    alpha = np.radians(np.linspace(-8.0, 16.0, 12)).reshape(3, 4)
+    reynolds = np.array([[2e4], [4e5], [5e6]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # Reynolds numbers past the table
+        values, second = polar.evaluate_with_second_derivatives(alpha, reynolds)
+        alone, second_alone = polar.evaluate(alpha, reynolds), polar.second_derivatives(alpha, reynolds)
+    for got, expected in zip((*values, *second), (*alone, *second_alone)):
+        assert got.shape == (3, 4)
+        np.testing.assert_array_equal(got, expected)
