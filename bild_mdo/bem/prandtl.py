@@ -201,12 +201,8 @@ def _prandtl_loss_real(phi, r, radius, hub_radius, num_blades, loss_model):
     linearisation)."""
     shape = np.broadcast_shapes(np.shape(phi), np.shape(r), np.shape(radius), np.shape(hub_radius))
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
-        sin_phi = np.sin(phi)
-        abs_s = np.abs(sin_phi)
-        unfloored = abs_s >= SIN_PHI_FLOOR
-        abs_s = np.maximum(abs_s, SIN_PHI_FLOOR)
-        dlog = np.sign(sin_phi) * np.cos(phi) / abs_s
-        dlog *= unfloored
+        abs_s, dabs_dphi = _abs_sin(phi)
+        dlog = dabs_dphi / abs_s
         half_b = 0.5 * num_blades
         tip, dt_phi, dt_gap, dt_base = _factor_real(radius - r, r, half_b, abs_s, dlog)
         if loss_model == "tip":

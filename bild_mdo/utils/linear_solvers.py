@@ -63,7 +63,6 @@ def dependency_order(matrix, levels=False):
         tuple ``(order, sizes)``, ``sizes`` the number of unknowns of each
         level in turn (an unknown depends only on unknowns of earlier levels).
     """
-    levels_wanted = levels
     n = matrix.shape[0]
     coo = matrix.tocoo()
     off = coo.row != coo.col
@@ -72,11 +71,11 @@ def dependency_order(matrix, levels=False):
                                          shape=(n, n))
     successors.sum_duplicates()
     waiting = np.diff(successors.tocsc().indptr)  # predecessors not yet placed, per unknown
-    levels = []
+    found = []
     level = np.flatnonzero(waiting == 0)
     placed = 0
     while level.size:
-        levels.append(level)
+        found.append(level)
         placed += level.size
         waiting[level] = -1
         starts, ends = successors.indptr[level], successors.indptr[level + 1]
@@ -86,10 +85,10 @@ def dependency_order(matrix, levels=False):
         needed = successors.indices[offsets + np.arange(counts.sum())]
         waiting -= np.bincount(needed, minlength=n)
         level = np.flatnonzero(waiting == 0)
-    order = np.concatenate(levels) if placed == n else None
-    if not levels_wanted:
+    order = np.concatenate(found) if placed == n else None
+    if not levels:
         return order
-    return order, (np.array([level.size for level in levels]) if order is not None else None)
+    return order, (np.array([level.size for level in found]) if order is not None else None)
 
 
 class _PermutedLU:
@@ -276,10 +275,12 @@ class TriangularDirectSolver(om.DirectSolver):
 
     def _linearize(self):
         system = self._system()
-        if system.comm.size == 1 and system._get_assembled_jac() is not None:
-            BatchedCSCJacobian.adopt(system._assembled_jac)
-        matrix = system._assembled_jac.get_dr_do_matrix() if system._get_assembled_jac() is not None else None
-        if system.comm.size == 1 and isinstance(matrix, scipy.sparse.csc_matrix):
+        jacobian = system._get_assembled_jac()
+        serial = system.comm.size == 1
+        if serial and jacobian is not None:
+            BatchedCSCJacobian.adopt(jacobian)
+        matrix = jacobian.get_dr_do_matrix() if jacobian is not None else None
+        if serial and isinstance(matrix, scipy.sparse.csc_matrix):
             permuted, order, level_sizes = self._permuted(matrix)
             diagonal_ok = permuted is not None and np.all(permuted.diagonal() != 0.0)
             if diagonal_ok:
