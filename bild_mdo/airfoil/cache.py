@@ -29,37 +29,14 @@ import shutil
 import tempfile
 import warnings
 import zipfile
-from pathlib import Path
+
+from bild_mdo.utils.cache_folder import CACHE_ENV, cache_dir
 
 import numpy as np
 
 __all__ = ["CACHE_ENV", "cache_dir", "clear_cache", "hash_key", "load_arrays", "store_arrays"]
 
-#: Environment variable that overrides the cache folder.
-CACHE_ENV = "BILD_MDO_CACHE_DIR"
-
-# Layout version of the cache folder itself (bump to abandon every old entry).
-_LAYOUT = "v1"
 _warned_unwritable = set()
-
-
-def cache_dir():
-    """The cache folder (not created here).
-
-    Returns
-    -------
-    Path
-        ``$BILD_MDO_CACHE_DIR`` if set and not empty, else
-        ``platformdirs.user_cache_dir("bild-mdo")``, with the layout version
-        appended.
-    """
-    override = os.environ.get(CACHE_ENV, "").strip()
-    if override:
-        base = Path(override).expanduser()
-    else:
-        import platformdirs  # a few ms; only needed when no override is set
-        base = Path(platformdirs.user_cache_dir("bild-mdo"))
-    return base / _LAYOUT
 
 
 def _update(digest, item):

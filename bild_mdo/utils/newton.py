@@ -72,7 +72,7 @@ def false_position(lo, hi, f_lo, f_hi):
 
 
 def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100, x_scale=1e-3,
-                     quadratic_stop=False):
+                     quadratic_stop=False, xtol=0.0):
     """Solve ``f(x) = 0`` for every element, with ``x`` kept inside ``[lo, hi]``.
 
     Parameters
@@ -105,6 +105,12 @@ def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100,
         applied correction's predicted error ``|step|**3 / |previous step|**2``
         below ``eps |x| / 4`` (half an ulp); the correction is applied.
         Default False (the behaviour of earlier releases, bit for bit).
+    xtol : float
+        With ``quadratic_stop``: also converged when that predicted error is
+        at most ``xtol`` (absolute, in the units of ``x``; default 0) and the
+        correction itself at most ``sqrt(xtol)`` (a step that is small only
+        against a large one before it, outside the quadratic regime, does not
+        stop the solve).
 
     Returns
     -------
@@ -136,6 +142,7 @@ def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100,
     f_prev = np.full(n, np.inf)
     step_prev = np.zeros(n)  # |previous Newton step|; 0 after a bisection step or at the start
     four_eps = 4.0 * _EPS
+    root_xtol = np.sqrt(xtol)
     caller = np.geterr()  # the function runs under the caller's floating-point error handling
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for count in range(1, max_iter + 2):
@@ -160,7 +167,10 @@ def bracketed_newton(function, lo, hi, f_lo, x0=None, *, atol=0.0, max_iter=100,
                 at_root = abs_f <= atol
             small = abs_step <= roundoff
             if quadratic_stop:
-                small |= abs_step * abs_step * abs_step <= 0.0625 * roundoff * step_prev * step_prev
+                cube = abs_step * abs_step * abs_step
+                small |= cube <= 0.0625 * roundoff * step_prev * step_prev
+                if xtol > 0.0:
+                    small |= (cube <= xtol * step_prev * step_prev) & (abs_step <= root_xtol)
             small_step = small & ~at_root
             finite = np.isfinite(fa)
             done = (at_root | small_step | (hi_w - lo_w <= roundoff)) & finite
