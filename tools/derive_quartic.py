@@ -1,8 +1,8 @@
-"""Derive the BILD quartic for eta2 (Eq. (27)) with sympy and write ``bild_mdo/bild/quartic.py``.
+"""Derive the BILD quartic for eta2 (Eq. (27)) with sympy and write ``bild_mdo/bild/variants/paper/quartic.py``.
 
 Run from the repository root::
 
-    python -m tools.derive_quartic           # (re)writes bild_mdo/bild/quartic.py
+    python -m tools.derive_quartic           # (re)writes bild_mdo/bild/variants/paper/quartic.py
     python -m tools.derive_quartic --check   # exit status 1 if the committed file is stale
 
 The output is a pure function of this script and the sympy version, so running
@@ -65,7 +65,7 @@ import sys
 import sympy as sp
 
 INPUT_NAMES = ("v_axial", "v_theta", "lam", "drag_to_lift")
-TARGET = pathlib.Path(__file__).resolve().parents[1] / "bild_mdo" / "bild" / "quartic.py"
+TARGET = pathlib.Path(__file__).resolve().parents[1] / "bild_mdo" / "bild" / "variants" / "paper" / "quartic.py"
 
 
 def symbols():
@@ -338,7 +338,7 @@ def physical_factor_partials(eta, v_axial, v_theta, lam, drag_to_lift, wrt=("eta
 
 
 def render():
-    """Return the text of ``bild_mdo/bild/quartic.py``."""
+    """Return the text of ``bild_mdo/bild/variants/paper/quartic.py``."""
     d = derive()
     args = ", ".join(INPUT_NAMES)
     zero = "    zero = 0.0 * (v_axial + v_theta + lam + drag_to_lift)\n"
@@ -383,7 +383,7 @@ def render():
 
 
 def main(argv=None):
-    """Write (or with ``--check``, verify) ``bild_mdo/bild/quartic.py``; return the exit status."""
+    """Write (or with ``--check``, verify) ``bild_mdo/bild/variants/paper/quartic.py``; return the exit status."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="exit 1 if the committed file differs")
     args = parser.parse_args(argv)

@@ -80,7 +80,7 @@ class PolarSecondDerivatives(NamedTuple):
 
     The implicit-function derivatives of the max-L/D point use the first four;
     the local section point of the Reynolds-aware BILD
-    (:mod:`bild_mdo.bild.local_section_point`) also uses ``d2cl_dre2, d2cd_dre2``.
+    (:mod:`bild_mdo.airfoil.load_path`) also uses ``d2cl_dre2, d2cd_dre2``.
     """
 
     d2cl_dalpha2: np.ndarray

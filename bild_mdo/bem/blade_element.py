@@ -35,7 +35,7 @@ hub_radius, speed_of_sound, collective_pitch`` (arrays broadcast to the station 
 
 BEM (:class:`~bild_mdo.bem.inflow.InflowComp`,
 :class:`~bild_mdo.bem.loads.BladeElementLoadsComp`) and BILD's reference
-station (:mod:`bild_mdo.bild.reference_station`) declare their options and
+station (:mod:`bild_mdo.bild.variants.reference_point.reference_station`) declare their options and
 inputs here (:func:`declare_section_options`, :func:`add_section_inputs`).
 """
 from __future__ import annotations

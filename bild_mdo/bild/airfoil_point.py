@@ -5,7 +5,7 @@ shape ``(nn,)`` (paper Assumption 2).  With a polar that varies along the span
 (:class:`~bild_mdo.airfoil.spanwise.SpanwisePolar`) every station has its own
 point, shape ``(nn, nr)``, taken at the reference station's Reynolds and Mach
 numbers (Assumption 2 per station).  The components that read the point
-(:class:`~bild_mdo.bild.eta2.Eta2Comp`,
+(:class:`~bild_mdo.bild.variants.paper.eta2.Eta2Comp`,
 :class:`~bild_mdo.bild.induced_velocity.InducedVelocityComp`,
 :class:`~bild_mdo.bild.inflow_angle.InflowAngleComp`,
 :class:`~bild_mdo.bild.chord.ChordComp`) declare the option

@@ -12,18 +12,17 @@ from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.stations import StationsComp
 from bild_mdo.bild.advance_ratio import AdvanceRatioComp
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
-from bild_mdo.bild.chains import add_ideal_loading, add_ideal_stations, add_local_section_chain
-from bild_mdo.bild.chord import CHORD_FORMS, ChordComp
+from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.feasibility import ON_INFEASIBLE, FeasibilityComp, FeasibilityLedger
 from bild_mdo.bild.geometry import GeometryComp
-from bild_mdo.bild.local_section_point import SECTION_POINTS
+from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.bild.mach import LocalMachComp
-from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp, default_polar
-from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
-from bild_mdo.bild.reference_station import REFERENCE_INPUTS, ReferenceStationComp
+from bild_mdo.bild.variants.reference_point.reference_airfoil import default_polar
 from bild_mdo.bild.root_chord_correction import RootChordCorrectionComp
 from bild_mdo.bild.rotational_speed import RotationalSpeedComp
 from bild_mdo.bild.thrust_target import ReferenceChordSolver, ThrustTargetComp
+from bild_mdo.bild.variants import VARIANTS
+from bild_mdo.bild.variants.base import Wiring
 from bild_mdo.utils.linear_solvers import TriangularDirectSolver
 from bild_mdo.utils.options import declare_size_options
 
@@ -151,12 +150,14 @@ class BILDGroup(om.Group):
         station (and the reference station) minimises its ``cd/cl`` along the
         path on which its load per unit span stays fixed while the chord, and
         so ``Re = rho W0 c / mu``, follows from the load
-        (:mod:`bild_mdo.bild.local_section_point`); eta2 then uses each
-        station's own ``cd/cl``, and subgroups with Newton's method close the
-        loops (two with the paper's loading, one with the exact loading: see
-        :func:`~bild_mdo.bild.chains.add_local_section_chain`).  Extra outputs:
-        ``reynolds[nn, nr]``, ``load_reynolds[nn, nr]``, ``alpha_star_ref,
-        cl_star_ref, cd_star_ref``; ``alpha_star, cl_star, cd_star`` are
+        (:mod:`bild_mdo.bild.variants.local_point`, solved once per polar on
+        its load-path table, :mod:`bild_mdo.airfoil.load_path_table`); eta2
+        then uses each station's own ``cd/cl``, and every station is solved on
+        its own given lambda (a feed-forward chain).  Extra outputs:
+        ``reynolds[nn, nr]``, ``load_reynolds[nn, nr]``,
+        ``section_branch[nn, nr]`` (the table's sheet of each station's point,
+        -1 unloaded), ``alpha_star_ref, cl_star_ref, cd_star_ref,
+        section_branch_ref``; ``alpha_star, cl_star, cd_star`` are
         ``[nn, nr]`` and ``mach_ref`` is not computed.  Needs a polar that
         varies with the Reynolds number only.  Where two minima of
         ``cd/cl`` are nearly equal the lower is taken, so the design can jump
@@ -167,7 +168,7 @@ class BILDGroup(om.Group):
         station (:mod:`bild_mdo.bild.annulus_stationarity`), the optimum of the
         BEM model for a fixed airfoil point.  With ``section_point='local'``:
         the Reynolds-aware exact loading
-        (:mod:`bild_mdo.bild.reynolds_ideal_loading`), where each annulus
+        (:mod:`bild_mdo.bild.variants.reynolds_exact`), where each annulus
         minimises ``F (e - lambda t)`` with its section point following its
         own load (the derivative of ``cd/cl`` with the load through the
         chord's Reynolds number enters the condition); every station is solved
@@ -285,34 +286,10 @@ class BILDGroup(om.Group):
         self.add_subsystem("rotational_speed", RotationalSpeedComp(**size),
                            promotes_inputs=["rpm", "radii", "ref_radius"],
                            promotes_outputs=["v_theta", "v_theta_ref"])
-        if opts["section_point"] == "local":
-            add_local_section_chain(self, polar, node, size, loss, checked)
-        else:
-            # A polar that varies along the span gives every station its own airfoil point (nn, nr); the
-            # reference station then reads its own point, promoted as cl_star_ref, cd_star_ref.
-            spanwise = bool(polar.varies_along_span)
-            point = ["alpha_star", "cl_star", "cd_star"]
-            airfoil_in = ["v_axial", "v_theta_ref", "ref_chord", "rho", "mu", "speed_of_sound"]
-            if spanwise:
-                airfoil_in += ["radii", "radius", "ref_radius_ratio"]
-                point += [f"{name}_ref" for name in point]
-            self.add_subsystem("reference_airfoil", ReferenceAirfoilComp(**size, polar=polar),
-                               promotes_inputs=airfoil_in, promotes_outputs=["reynolds_ref", "mach_ref"] + point)
-            reference_in = [(name, f"{name}_ref") if spanwise and name in ("cl_star", "cd_star") else name
-                            for name in REFERENCE_INPUTS]
-            self.add_subsystem("reference_station", ReferenceStationComp(**node, **loss),
-                               promotes_inputs=reference_in, promotes_outputs=["phi_ref"])
-            self.add_subsystem("reference_induced_velocity", ReferenceInducedVelocityComp(**node, **loss),
-                               promotes_inputs=["phi_ref"] + reference_in,
-                               promotes_outputs=["u_axial_ref", "u_theta_ref"])
-            exact = add_ideal_loading(self, opts["ideal_loading"], node, loss, checked, reference_in)
-            along = dict(varies_along_span=spanwise)
-            add_ideal_stations(self, size, loss, checked, along, exact)
-            chord_load = ["dthrust_dr"] if opts["chord_form"] == "thrust" else ["dtorque_dr", "radii"]
-            self.add_subsystem("chord", ChordComp(**size, num_blades=b, chord_form=opts["chord_form"], **checked,
-                                                  **along),
-                               promotes_inputs=chord_load + ["phi", "inflow_speed", "rho", "cl_star", "cd_star"],
-                               promotes_outputs=["chord_raw", "lift_coefficient", "drag_coefficient"])
+        wiring = Wiring(self, polar, node, size, loss, checked, opts["chord_form"])
+        #: The member of the BILD family the options select (:mod:`bild_mdo.bild.variants`).
+        self.variant = VARIANTS[opts["ideal_loading"], opts["section_point"]](wiring)
+        self.variant.add()
         self.add_subsystem("root_chord_correction",
                            RootChordCorrectionComp(**size, correction_constant=opts["root_chord_correction"]),
                            promotes_inputs=["chord_raw", "ref_chord", "radii", "radius"],

@@ -9,7 +9,7 @@ from bild_mdo.bild.airfoil_point import (
     per_station,
 )
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
-from bild_mdo.bild.quartic import axial_velocity_root
+from bild_mdo.bild.variants.paper.quartic import axial_velocity_root
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -27,7 +27,7 @@ class InducedVelocityComp(om.ExplicitComponent):
     ``c >= 0`` for ``0.5 <= eta2 <= 1``, so the root is real.  For ``b < 0``
     (always in hover) ``b + sqrt(b**2 + c)`` cancels when ``c`` is small
     (``eta2`` near 1); the root is then evaluated as ``c / (sqrt(b**2 + c) - b)``
-    (:func:`~bild_mdo.bild.quartic.axial_velocity_root`).  An
+    (:func:`~bild_mdo.bild.variants.paper.quartic.axial_velocity_root`).  An
     unloaded station in hover (``eta2 = 1``, ``V_x = 0``) gives ``u_axial = 0``
     and ``u_theta = 0`` with finite derivatives (``sqrt(b**2 + c) = |b| > 0``).
 

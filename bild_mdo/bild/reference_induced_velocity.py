@@ -5,7 +5,7 @@ import openmdao.api as om
 from bild_mdo.bem.blade_element import add_section_inputs
 from bild_mdo.bem.inflow_residual import induced_velocities
 from bild_mdo.bem.prandtl import loss_inputs
-from bild_mdo.bild.reference_station import (REFERENCE_INPUTS, declare_reference_options, reference_loss,
+from bild_mdo.bild.variants.reference_point.reference_station import (REFERENCE_INPUTS, declare_reference_options, reference_loss,
                                              reference_section, section_partials, section_wrt)
 from bild_mdo.utils.options import add_outputs
 from bild_mdo.utils.sparsity import node_wrt_node
@@ -26,14 +26,14 @@ class ReferenceInducedVelocityComp(om.ExplicitComponent):
     Options
     -------
     num_nodes, num_blades, loss_model
-        Those of :class:`~bild_mdo.bild.reference_station.ReferenceStationComp`.
+        Those of :class:`~bild_mdo.bild.variants.reference_point.reference_station.ReferenceStationComp`.
 
     Inputs
     ------
     phi_ref[nn] (rad)
         Inflow angle at the reference station, and the reference-section inputs
-        of :class:`~bild_mdo.bild.reference_station.ReferenceStationComp`
-        (:data:`~bild_mdo.bild.reference_station.REFERENCE_INPUTS`).
+        of :class:`~bild_mdo.bild.variants.reference_point.reference_station.ReferenceStationComp`
+        (:data:`~bild_mdo.bild.variants.reference_point.reference_station.REFERENCE_INPUTS`).
 
     Outputs
     -------
@@ -73,7 +73,7 @@ class ReferenceInducedVelocityComp(om.ExplicitComponent):
         outputs["u_axial_ref"], outputs["u_theta_ref"] = values
 
     def _terms(self, inputs, radii):
-        """Real ``F`` (:func:`~bild_mdo.bild.reference_station.reference_loss`) and the terms of Eq. (8)."""
+        """Real ``F`` (:func:`~bild_mdo.bild.variants.reference_point.reference_station.reference_loss`) and the terms of Eq. (8)."""
         b, model = self.options["num_blades"], self.options["loss_model"]
         # One design: NumPy scalars (the same operations, without the cost of one-element arrays).
         scalar = self.options["num_nodes"] == 1

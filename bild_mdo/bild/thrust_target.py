@@ -218,11 +218,19 @@ class ReferenceChordSolver(NonlinearSolver):
         system = self._system()
         balance = system.thrust_target_balance
         balance.start()
+        if not hasattr(self, "_warm"):
+            # Components that can start from their last solution (LocalStationComp): each pass after the
+            # first starts every station from its state in the pass before (a design on its own, as in a batch).
+            self._warm = [sub for sub in system.system_iter(recurse=True) if hasattr(sub, "warm_start")]
         try:
             for self._iter_count in range(balance.options["maxiter"] + 2):
                 self._gs_iter()
                 if balance.finished:
                     return
+                for sub in self._warm:
+                    sub.warm_start = True
         finally:
             balance.options["feasibility"].deferred = False
+            for sub in self._warm:
+                sub.warm_start = False
         raise om.AnalysisError(f"{system.msginfo}: the reference-chord solve did not finish")

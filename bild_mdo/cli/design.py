@@ -9,7 +9,7 @@ from bild_mdo import validation
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
-from bild_mdo.bild.local_section_point import SECTION_POINTS
+from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade

@@ -26,12 +26,13 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo import validation
+from bild_mdo.airfoil.load_path_table import data_reynolds_range
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.metrics import warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
-from bild_mdo.bild.local_section_point import SECTION_POINTS
+from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.io.airfoil import resolve_airfoil
@@ -49,6 +50,20 @@ def _model_outputs(prob):
         except KeyError:
             if name not in OPTIONAL_OUTPUTS:
                 raise
+
+
+def station_reynolds(outputs, values, polar):
+    """The chord Reynolds number of every station and whether it lies outside the polar's data
+    (:data:`~bild_mdo.results.design_result.DERIVED_DISTRIBUTIONS`)."""
+    omega = values["rpm"][:, None] * (RPM_TO_REV_PER_S * 2.0 * np.pi)
+    w0 = np.hypot(values["v_axial"][:, None], omega * outputs["radii"])
+    reynolds = outputs["rho"][:, None] * w0 * outputs["chord"] / outputs["mu"][:, None]
+    data = data_reynolds_range(polar)
+    outside = np.zeros(reynolds.shape)
+    if data is not None:
+        with np.errstate(invalid="ignore"):
+            outside = ((outputs["chord"] > 0.0) & ((reynolds < data[0]) | (reynolds > data[1]))).astype(float)
+    return {"reynolds": reynolds, "reynolds_outside_data": outside}
 
 
 def _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius_ratio, ref_chord, altitude,
@@ -124,7 +139,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         point of the reference station's Reynolds number.  ``'local'``: each
         station minimises its ``cd/cl`` at its fixed load, with the chord (and so
         the Reynolds number) following from the load
-        (:mod:`bild_mdo.bild.local_section_point`; a polar that varies with the
+        (:mod:`bild_mdo.bild.variants.local_point`; a polar that varies with the
         Reynolds number only).
     ideal_loading : {'paper', 'exact'}
         ``'paper'`` (default): lambda of Eq. (22) and eta2 of the quartic (27).
@@ -133,7 +148,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         (:mod:`bild_mdo.bild.annulus_stationarity`); with a fixed airfoil point
         this is the optimum of the BEM model.  With ``section_point='local'``
         the Reynolds-aware exact loading: each station's section point follows
-        its own load (:mod:`bild_mdo.bild.reynolds_ideal_loading`).
+        its own load (:mod:`bild_mdo.bild.variants.reynolds_exact`).
     on_infeasible : {'raise', 'skip'}
         What to do with designs whose ideal loading does not exist (the
         paper's Assumption 3 fails at a station, or a hover rotor cannot load
@@ -222,11 +237,13 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     else:
         values["v_axial"] = np.array(prob.get_val("v_axial", units="m/s"))
     outputs["radial_fractions"] = outputs["radii"] / values["radius"][:, None]
+    outputs.update(station_reynolds(outputs, values, polar))
     ordered = {name: outputs[name] for name in DISTRIBUTIONS if name in outputs}
     ordered.update({name: values[name] for name in INPUT_UNITS})
     ordered.update({name: outputs[name] for name in NODE_OUTPUT_UNITS if name in outputs})
     result = DesignResult(values=ordered, num_blades=num_blades, airfoil=getattr(polar, "name", type(polar).__name__),
                           loss_model=loss_model, chord_form=chord_form,
                           root_chord_correction=root_chord_correction, polar=polar, is_batch=True,
-                          feasible=~infeasible, status=prob.model.feasibility.status())
+                          feasible=~infeasible, status=prob.model.feasibility.status(),
+                          section_point=section_point, ideal_loading=ideal_loading)
     return result if is_batch else result[0]

@@ -24,11 +24,17 @@ from bild_mdo.results import tables
 DISTRIBUTION_UNITS = {
     "radii": "m", "dr": "m", "chord": "m", "chord_raw": "m", "twist": "rad", "lift_coefficient": None,
     "drag_coefficient": None, "phi": "rad", "eta2": None, "dthrust_dr": "N/m", "dtorque_dr": "N*m/m",
-    "mach": None,
+    "mach": None, "section_branch": None,
 }
 
-#: Outputs a result holds only where the model has them (the local Mach number is new in the groups).
-OPTIONAL_OUTPUTS = ("mach", "tip_mach")
+#: Outputs a result holds only where the model has them (the local Mach number is new in the groups; the
+#: sheet of each station's section point only with ``section_point='local'``).
+OPTIONAL_OUTPUTS = ("mach", "tip_mach", "section_branch")
+
+#: Distributions design_rotor adds to the model's: the chord Reynolds number ``rho W0 c / mu`` of every station
+#: (``W0 = sqrt(V_x**2 + (Omega r)**2)``, the BEM convention; 0 where the chord is 0) and whether it lies
+#: outside the polar's data (1.0) or not (0.0), where the polar has a data range.
+DERIVED_DISTRIBUTIONS = {"reynolds": None, "reynolds_outside_data": None}
 
 #: What design_rotor does with infeasible designs.
 ON_INFEASIBLE = ("raise", "skip")
@@ -47,7 +53,8 @@ NODE_OUTPUT_UNITS = {
     "rho": "kg/m**3", "mu": "Pa*s", "hub_radius": "m", "ref_radius": "m",
 }
 
-DISTRIBUTIONS = ("radii", "radial_fractions") + tuple(name for name in DISTRIBUTION_UNITS if name != "radii")
+DISTRIBUTIONS = ("radii", "radial_fractions") + tuple(name for name in DISTRIBUTION_UNITS if name != "radii") + tuple(
+    DERIVED_DISTRIBUTIONS)
 # Quantities the geometry files keep as the design point.
 _GEOMETRY_POINT = ("v_axial", "advance_ratio", "rpm", "altitude", "ref_chord", "ref_radius_ratio",
                    "hub_radius_ratio", "reynolds_ref", "thrust", "torque", "power", "efficiency", "figure_of_merit")
@@ -82,6 +89,12 @@ class DesignResult:
         Sectional thrust (N/m) and torque (N m/m), all blades, Eqs. (1), (2).
     mach : ndarray
         Local Mach number W / a of each station (where the BILD model outputs it).
+    reynolds, reynolds_outside_data : ndarray
+        Chord Reynolds number ``rho W0 c / mu`` of each station, and 1.0 where it lies outside the polar's
+        data (the polar extrapolates there; :meth:`summary` lists those stations).
+    section_branch : ndarray
+        With ``section_point='local'``: the sheet of the polar's load-path table of each station's section
+        point (-1 unloaded); adjacent loaded stations on different sheets are a jump of the design.
     thrust, torque, power, efficiency, figure_of_merit, ... : float or ndarray
         Every performance metric of :data:`~bild_mdo.bem.metrics.METRICS` (Table 2)
         that the BILD model outputs (``tip_mach`` among them, once it does).
@@ -104,7 +117,7 @@ class DesignResult:
         ``ref_chord`` is NaN); every other quantity is NaN.
     status : str or ndarray of str
         ``'ok'`` where feasible, else why the design is infeasible.
-    num_blades, airfoil, loss_model, chord_form, root_chord_correction
+    num_blades, airfoil, loss_model, chord_form, root_chord_correction, section_point, ideal_loading
         The configuration; ``polar`` is the Polar object used.
 
     Notes
@@ -126,9 +139,11 @@ class DesignResult:
     is_batch: bool = True
     feasible: np.ndarray | bool = True
     status: np.ndarray | str = "ok"
+    section_point: str = "reference"
+    ideal_loading: str = "paper"
 
-    UNITS: ClassVar[dict] = {"radii": "m", "radial_fractions": None, **DISTRIBUTION_UNITS, **INPUT_UNITS,
-                             **NODE_OUTPUT_UNITS}
+    UNITS: ClassVar[dict] = {"radii": "m", "radial_fractions": None, **DISTRIBUTION_UNITS, **DERIVED_DISTRIBUTIONS,
+                             **INPUT_UNITS, **NODE_OUTPUT_UNITS}
 
     def __getattr__(self, name):
         # Only called for names that are not fields: the quantities and their *_deg forms.
@@ -204,7 +219,8 @@ class DesignResult:
         return {**self.values, "feasible": self.feasible, "status": self.status,
                 "num_blades": self.num_blades, "airfoil": self.airfoil,
                 "loss_model": self.loss_model, "chord_form": self.chord_form,
-                "root_chord_correction": self.root_chord_correction}
+                "root_chord_correction": self.root_chord_correction, "section_point": self.section_point,
+                "ideal_loading": self.ideal_loading}
 
     def geometry(self, index=None):
         """The blade geometry of one design as a :class:`~bild_mdo.io.geometry.RotorGeometry`.

@@ -85,7 +85,7 @@ _SINGLE_DESIGN_ROWS = (
     ("reference radius r_ref", "ref_radius", "m"), ("reference chord c_ref", "ref_chord", "m"),
     ("solidity sigma_r", "solidity", "-"),
     ("reference airfoil point", None, None), ("Reynolds number Re_ref", "reynolds_ref", "-"),
-    ("alpha* (max L/D)", "alpha_star_deg", "deg"), ("C_l*, C_d*", ("cl_star", "cd_star"), "-"),
+    ("alpha*", "alpha_star_deg", "deg"), ("C_l*, C_d*", ("cl_star", "cd_star"), "-"),
     ("ideal-loading constant lambda", "ideal_loading_constant", "m/s"),
     ("performance", None, None), ("thrust T", "thrust", "N"), ("torque Q", "torque", "N m"), ("power P", "power", "kW"),
     ("energy loss E", "energy_loss", "kW"), ("efficiency eta", "efficiency", "-"),
@@ -143,36 +143,90 @@ def design_batch_table(result, max_rows):
 
 
 def single_design_table(design):
-    """Label / value / units lines of one design's inputs, reference point and performance."""
+    """Label / value / units lines of one design's inputs, reference point and performance, then its notes
+    (:func:`design_notes`)."""
     status = getattr(design, "status", "ok")
     lines = [] if status == "ok" else [f"INFEASIBLE (values NaN): {status}"]
     useful = bool(propulsive(design))
+    local = getattr(design, "section_point", "reference") == "local"
     for label, quantity, units in _SINGLE_DESIGN_ROWS:
         if quantity is None:
-            lines.append(f"{label}:")
+            lines.append(f"{label}:" if label != "reference airfoil point" else f"section point ({_method(design)}):")
         elif isinstance(quantity, tuple):
             cl_star, cd_star = (getattr(design, name) for name in quantity)
             text = f"{_number(cl_star, '.4f')}, {_number(cd_star, '.5f')}"
-            lines.append(f"  {label:<32s} {text:>14s} {units}" + _per_station(cl_star))
+            lines.append(f"  {label:<32s} {text:>14s} {units}" + _per_station(cl_star, local))
         elif quantity in PROPULSIVE_ONLY and not useful:
             lines.append(f"  {label:<32s} {'n/a':>14s} {units}  (needs T > 0 and P > 0)")
         elif hasattr(design, quantity):  # tip_mach only where the model outputs it
             scale = METRICS_BY_NAME[quantity].display_scale if units == "kW" else 1.0
             value = np.asarray(getattr(design, quantity)) * scale
-            lines.append(f"  {label:<32s} {_number(value, '.6g'):>14s} {units}" + _per_station(value))
-    return lines
+            lines.append(f"  {label:<32s} {_number(value, '.6g'):>14s} {units}" + _per_station(value, local))
+    return lines + design_notes(design)
+
+
+def _method(design):
+    if getattr(design, "section_point", "reference") == "local":
+        return "each station at the least C_d/C_l of its own path of fixed load"
+    if np.ndim(design.cl_star):
+        return "max L/D at Re_ref of each station's airfoil"
+    return "max L/D at Re_ref, every station (the paper's Assumption 2)"
+
+
+def _fractions(design, stations):
+    return ", ".join(f"{design.radial_fractions[i]:.3f}" for i in stations)
+
+
+def design_notes(design):
+    """What a reader of one design should know beyond its numbers (empty when there is nothing):
+
+    * stations whose chord Reynolds number lies outside the polar's data (the polar extrapolates there);
+    * with the local section point, jumps: adjacent loaded stations on different sheets of the load-path table
+      (the two minima of C_d/C_l along the path are nearly equal there, and the lower is taken), where chord
+      and twist change by more than the ideal loading's smooth variation;
+    * unloaded stations (zero chord) between loaded ones.
+    """
+    if getattr(design, "status", "ok") != "ok":
+        return []
+    notes = []
+    outside = np.flatnonzero(np.asarray(design.values.get("reynolds_outside_data", 0.0)) > 0.0)
+    if outside.size:
+        re = design.reynolds[outside]
+        notes.append(f"  {outside.size} station(s) outside the polar's Reynolds-number data, extrapolated there "
+                     f"(Re {np.min(re):.3g}..{np.max(re):.3g}) at r/R {_fractions(design, outside)}")
+    chord = np.asarray(design.chord)
+    loaded = chord > 0.0
+    if loaded.any():
+        first, last = np.flatnonzero(loaded)[[0, -1]]
+        inner = np.flatnonzero(~loaded[first:last + 1]) + first
+        if inner.size:
+            notes.append(f"  {inner.size} unloaded station(s) (zero chord) between loaded ones at r/R "
+                         f"{_fractions(design, inner)}: their annulus is better left unloaded at this lambda")
+    branch = design.values.get("section_branch")
+    if branch is not None:
+        both = loaded[:-1] & loaded[1:]
+        switch = np.flatnonzero(both & (branch[:-1] != branch[1:]))
+        for i in switch:
+            notes.append(f"  jump between r/R {design.radial_fractions[i]:.3f} and {design.radial_fractions[i + 1]:.3f}"
+                         f": the section point changes branch (sheet {int(branch[i])} -> {int(branch[i + 1])}, "
+                         f"alpha {np.degrees(design.alpha_star[i]):.2f} -> {np.degrees(design.alpha_star[i + 1]):.2f} "
+                         f"deg); chord {chord[i]:.4g} -> {chord[i + 1]:.4g} m, twist "
+                         f"{design.twist_deg[i]:.2f} -> {design.twist_deg[i + 1]:.2f} deg")
+    return ["notes:"] + notes if notes else []
 
 
 def _number(value, fmt):
-    """A number, or the range ``lo..hi`` of a per-station array (a blade with several airfoils)."""
+    """A number, or the range ``lo..hi`` of a per-station array (several airfoils, or the local section point)."""
     value = np.asarray(value)
     if value.ndim == 0:
         return f"{float(value):{fmt}}"
     return f"{np.min(value):{fmt}}..{np.max(value):{fmt}}"
 
 
-def _per_station(value):
-    return "  (per station: several airfoils along the span)" if np.ndim(value) else ""
+def _per_station(value, local=False):
+    if not np.ndim(value):
+        return ""
+    return "  (per station: its own section point)" if local else "  (per station: several airfoils along the span)"
 
 
 def station_table(design):

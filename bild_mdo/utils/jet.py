@@ -8,7 +8,7 @@ value and every analytic partial together.  A name missing from the dict has a
 zero partial; plain numbers and arrays are constants.
 
 Used where a residual chains many terms whose second derivatives the partials
-need (:mod:`bild_mdo.bild.reynolds_ideal_loading`); the primitives (the
+need (:mod:`bild_mdo.bild.variants.local_point.load_path_model`); the primitives (the
 polar's first and second derivatives, the Prandtl factor's jet) are seeded by
 the caller from their own analytic derivatives.
 """

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
-from bild_mdo.bild.local_section_point import SECTION_POINTS
+from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.optimization.problem import OPTIMIZERS
 

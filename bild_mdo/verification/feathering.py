@@ -9,6 +9,8 @@ from bild_mdo.optimization.initial_design import TWIST_LIMITS
 
 #: Angles of attack (at the unloaded inflow angle) scanned for the twist of a station raised to the chord bound.
 FEATHER_ANGLES = np.radians(np.arange(-20.0, 20.0 + 0.25, 0.5))
+#: Rotors per BEM analysis of the scan (its memory grows with them: about 0.6 GB at 30 stations).
+ROTORS_PER_ANALYSIS = 8000
 
 
 def least_loss_twist(chord, twist, raised, case, num_blades, polar, loss_model):
@@ -45,6 +47,20 @@ def least_loss_twist(chord, twist, raised, case, num_blades, polar, loss_model):
     ndarray, shape (nn, nr)
         ``twist`` with the raised stations' twists replaced.
     """
+    nn, nr = chord.shape
+    out = twist.copy()
+    rows = np.flatnonzero(np.any(raised, axis=1))
+    # The designs with a raised station, in batches of at most ROTORS_PER_ANALYSIS rotors (each of them makes
+    # FEATHER_ANGLES.size + 1 rotors of the analysis).
+    per_batch = max(1, ROTORS_PER_ANALYSIS // (FEATHER_ANGLES.size + 1))
+    for start in range(0, rows.size, per_batch):
+        part = rows[start:start + per_batch]
+        out[part] = _least_loss_twist(chord[part], twist[part], raised[part], {k: v[part] for k, v in case.items()},
+                                      num_blades, polar, loss_model)
+    return out
+
+
+def _least_loss_twist(chord, twist, raised, case, num_blades, polar, loss_model):
     nn, nr = chord.shape
     k = FEATHER_ANGLES.size + 1
     radii = station_radii(case["radius"], case["hub_radius"], nr)

@@ -18,7 +18,7 @@ import pytest
 from bild_mdo.airfoil import AnalyticPolar, TabulatedPolar, naca4412
 from bild_mdo.airfoil.sources import PolarData
 from bild_mdo.airfoil.surrogate_terms import extrapolate_log_reynolds
-from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
+from bild_mdo.bild.variants.reference_point.reference_airfoil import ReferenceAirfoilComp
 from bild_mdo.utils.testing import check_component_partials
 from tests.bild.conftest import NN, state
 

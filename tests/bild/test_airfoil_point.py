@@ -3,13 +3,13 @@ import numpy as np
 import pytest
 
 from bild_mdo.bild.chord import ChordComp
-from bild_mdo.bild.eta2 import Eta2Comp
+from bild_mdo.bild.variants.paper.eta2 import Eta2Comp
 from bild_mdo.bild.induced_velocity import InducedVelocityComp
 from bild_mdo.bild.inflow_angle import InflowAngleComp
 from bild_mdo.utils.testing import check_component_partials
 from tests.bild.conftest import NN, NR, state
 from tests.bild.test_chord import _consistent
-from tests.bild.test_eta2 import component_values
+from tests.bild.variants.paper.test_eta2 import component_values
 
 COMPONENTS = {
     "eta2": (Eta2Comp, {}, component_values, ("eta2",)),

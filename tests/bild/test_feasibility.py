@@ -4,7 +4,7 @@ import openmdao.api as om
 import pytest
 
 from bild_mdo.bild.feasibility import FeasibilityLedger, node_ranges
-from bild_mdo.bild.ideal_loading import IdealLoadingComp
+from bild_mdo.bild.variants.paper.ideal_loading import IdealLoadingComp
 from bild_mdo.bild.momentum_loads import MomentumLoadsComp
 from bild_mdo.utils.testing import check_component_partials
 

@@ -4,7 +4,7 @@ import pytest
 from bild_mdo.bem.inflow_residual import force_coefficients
 from bild_mdo.bem.prandtl import prandtl_loss
 from bild_mdo.bild.reference_induced_velocity import ReferenceInducedVelocityComp
-from bild_mdo.bild.reference_station import ReferenceStationComp
+from bild_mdo.bild.variants.reference_point.reference_station import ReferenceStationComp
 from bild_mdo.utils.testing import check_component_partials
 from tests.bild.conftest import NN, state
 

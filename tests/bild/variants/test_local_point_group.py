@@ -1,4 +1,9 @@
-"""BILDGroup(section_point='local'): the invariants of the method, exact totals, and the reference point's limit."""
+"""BILDGroup(section_point='local'), both loadings: the invariants of the method, exact totals, the reference limit.
+
+Sources: the method's invariants (chord(r_ref) = c_ref; Re = rho W0 c / mu at every station; a BEM analysis of
+the blade returns the design's loads; a design does not depend on its batch), complex step (totals), and the
+Reynolds-independent limit (a polar frozen at one Reynolds number gives the reference-point design).
+"""
 import warnings
 
 import numpy as np
@@ -9,7 +14,9 @@ from openmdao.utils.assert_utils import assert_no_approx_partials
 from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.bild import BILDGroup
-from bild_mdo.bild.reference_airfoil import default_polar
+from bild_mdo.bild.variants.reference_point.reference_airfoil import default_polar
+from bild_mdo.bild.variants.local_paper import station as paper_station
+from bild_mdo.bild.variants.reynolds_exact import station as reynolds_station
 from bild_mdo.utils.testing import assert_totals_match
 
 # Midpoints of 12 equal annuli from r/R = 0.2 put station 4 at r/R = 0.2 + 4.5 * 0.8/12 = 0.5 (hand derivation).
@@ -25,11 +32,12 @@ def _quiet():
         yield
 
 
-def _problem(kind, section_point="local", complex_step=False, mode="auto", num_radial=NR_REF, **options):
+def _problem(kind, section_point="local", complex_step=False, mode="auto", num_radial=NR_REF,
+             ref_chord=(0.1, 0.2, 0.3), **options):
     prob = om.Problem(BILDGroup(num_nodes=3, num_radial=num_radial, section_point=section_point, **options),
                       reports=False)
     prob.setup(mode=mode, force_alloc_complex=complex_step)
-    for name, value in dict(v_axial=OPERATING[kind], ref_chord=[0.1, 0.2, 0.3], rpm=[800.0, 900.0, 1000.0],
+    for name, value in dict(v_axial=OPERATING[kind], ref_chord=list(ref_chord), rpm=[800.0, 900.0, 1000.0],
                             altitude=[0.0, 1000.0, 2500.0]).items():
         prob.set_val(name, value)
     prob.run_model()
@@ -77,11 +85,13 @@ def test_bem_analysis_reproduces_the_local_design(kind, ideal_loading):
     np.testing.assert_allclose(result.phi, prob.get_val("phi"), atol=1e-8)
 
 
-def test_reynolds_independent_polar_gives_the_reference_design(kind):
-    # Invariant: with no Re dependence the fixed-load optimum of every station is the max-L/D point.
+@LOADINGS
+def test_reynolds_independent_polar_gives_the_reference_design(kind, ideal_loading):
+    # Invariant: with no Re dependence the fixed-load optimum of every station is the max-L/D point (and the
+    # Reynolds feedback kappa vanishes: the exact loading at the max-L/D point).
     polar = sweep_polar("naca4412@re=1e6")
-    local = _problem(kind, polar=polar)
-    reference = _problem(kind, section_point="reference", polar=polar)
+    local = _problem(kind, polar=polar, ideal_loading=ideal_loading)
+    reference = _problem(kind, section_point="reference", polar=polar, ideal_loading=ideal_loading)
     for name in ("chord", "twist", "thrust", "torque", "energy_loss"):
         np.testing.assert_allclose(local.get_val(name), reference.get_val(name), rtol=1e-9, atol=1e-12)
 
@@ -108,7 +118,52 @@ def test_thrust_target_local_design(ideal_loading):
     prob.set_val("v_axial", [0.0, 15.0])
     prob.set_val("thrust_target", [900.0, 700.0])
     prob.run_model()
-    np.testing.assert_allclose(prob.get_val("thrust"), [900.0, 700.0], rtol=1e-10)
+    # The solve's tolerance is 1e-12 in ln T (ThrustTargetComp): met as tightly as with the paper's BILD.
+    np.testing.assert_allclose(prob.get_val("thrust"), [900.0, 700.0], rtol=2e-12)
+    # The thrust-target design is the design at the chord it found.
+    chord = prob.get_val("ref_chord")
+    direct = om.Problem(BILDGroup(num_nodes=2, num_radial=8, section_point="local", ideal_loading=ideal_loading),
+                        reports=False)
+    direct.setup()
+    direct.set_val("v_axial", [0.0, 15.0])
+    direct.set_val("ref_chord", chord)
+    direct.run_model()
+    np.testing.assert_allclose(direct.get_val("chord"), prob.get_val("chord"), rtol=1e-9, atol=1e-14)
+
+
+@LOADINGS
+def test_design_does_not_depend_on_the_batch(kind, ideal_loading):
+    # A node's outputs do not depend on the other nodes (each station is solved on its own), bit for bit.
+    batch = _problem(kind, ideal_loading=ideal_loading)
+    values = dict(v_axial=OPERATING[kind], ref_chord=[0.1, 0.2, 0.3], rpm=[800.0, 900.0, 1000.0],
+                  altitude=[0.0, 1000.0, 2500.0])
+    for node in range(3):
+        alone = om.Problem(BILDGroup(num_nodes=1, num_radial=NR_REF, section_point="local",
+                                     ideal_loading=ideal_loading), reports=False)
+        alone.setup()
+        for name, value in values.items():
+            alone.set_val(name, value[node])
+        alone.run_model()
+        for name in ("chord", "twist", "section_branch"):
+            np.testing.assert_array_equal(alone.get_val(name)[0], batch.get_val(name)[node])
+
+
+@pytest.mark.parametrize("ideal_loading, module", [("exact", reynolds_station), ("paper", paper_station)])
+def test_a_rerun_solves_only_the_designs_whose_inputs_changed(kind, ideal_loading, module, monkeypatch):
+    # A design whose inputs did not change keeps its stations' states: after changing node 1's ref_chord only
+    # node 1's stations are solved, and the outputs equal a fresh problem's at the new inputs.
+    prob = _problem(kind, ideal_loading=ideal_loading)
+    solved = []
+    real_solve = module.solve_stations
+    monkeypatch.setattr(module, "solve_stations", lambda table, flow, **kw: solved.append(flow.r.size)
+                        or real_solve(table, flow, **kw))
+    prob.set_val("ref_chord", [0.1, 0.25, 0.3])
+    prob.run_model()
+    assert solved == [NR_REF]
+    monkeypatch.undo()
+    fresh = _problem(kind, ideal_loading=ideal_loading, ref_chord=[0.1, 0.25, 0.3])
+    for name in ("chord", "twist", "thrust", "torque"):
+        np.testing.assert_allclose(prob.get_val(name), fresh.get_val(name), rtol=1e-12, atol=1e-15)
 
 
 @pytest.mark.parametrize("value", ["Local", "max_ld", None, 1])

@@ -18,7 +18,7 @@ class ExactIdealLoadingComp(om.ExplicitComponent):
     The marginal energy loss per marginal thrust of the reference annulus,
     with the Prandtl loss factor ``F`` differentiated too (the paper's Eq. (22)
     leaves it out).  ``phi_ref`` is the reference station's BEM inflow angle
-    with ``c_ref`` (:class:`~bild_mdo.bild.reference_station.ReferenceStationComp`),
+    with ``c_ref`` (:class:`~bild_mdo.bild.variants.reference_point.reference_station.ReferenceStationComp`),
     so the station of the exact ideal loading at ``r_ref`` has the chord ``c_ref``.
 
     The reference annulus must carry thrust (``phi_ref > atan(V_x/V_theta_ref)``)

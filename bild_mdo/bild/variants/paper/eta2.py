@@ -8,7 +8,7 @@ from bild_mdo.bild.airfoil_point import (
     declare_spanwise_option,
     per_station,
 )
-from bild_mdo.bild.quartic import quartic, quartic_and_partials, quartic_partials
+from bild_mdo.bild.variants.paper.quartic import quartic, quartic_and_partials, quartic_partials
 from bild_mdo.bild.feasibility import declare_feasibility_option, report_infeasible, station_details
 from bild_mdo.utils.newton import bracketed_newton, complex_step_update, false_position
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
@@ -44,7 +44,7 @@ def _bracket_function(eta, v_axial, v_theta, lam, drag_to_lift, hover):
     Returns ``(f, df/deta, scale)``; ``eps * scale`` bounds the rounding error
     of ``f``.
     """
-    # N, M, b, c of tools/derive_quartic.py (bild_mdo.bild.quartic.physical_factor_terms) and their eta
+    # N, M, b, c of tools/derive_quartic.py (bild_mdo.bild.variants.paper.quartic.physical_factor_terms) and their eta
     # derivatives, written out: this runs once per Newton pass.
     v2 = v_theta * v_theta
     one_minus = 1.0 - eta
@@ -132,7 +132,7 @@ def _taylor_coefficients(v_axial, v_theta, lam, drag_to_lift):
     """``(q0, ..., q4)`` with ``P(1 - t) = lam**4 sum_k q_k t**k``: the quartic (Eq. (27)) about ``eta = 1``.
 
     Expanded with sympy from the ``N``, ``M``, ``b``, ``c`` of tools/derive_quartic.py (tests/bild/test_eta2.py
-    asserts the identity against :func:`~bild_mdo.bild.quartic.quartic`), with ``rho = V_x/lam`` per design and
+    asserts the identity against :func:`~bild_mdo.bild.variants.paper.quartic.quartic`), with ``rho = V_x/lam`` per design and
     ``z = V_theta/lam`` per station, each coefficient a polynomial in ``z``; ``q0 = P(1)/lam**4``.
     """
     rho, s = v_axial / lam, drag_to_lift
@@ -317,7 +317,7 @@ class Eta2Comp(om.ImplicitComponent):
     where ``P`` (in (m/s)**4) is the quartic derived in
     :mod:`tools.derive_quartic` from Eqs. (22), (24), (26) (the
     paper's printed Eq. (34) is misprinted; see
-    :mod:`bild_mdo.bild.quartic`).  The positive per-point scale
+    :mod:`bild_mdo.bild.variants.paper.quartic`).  The positive per-point scale
     has the units of ``P`` and makes ``R`` O(1) at hub and tip alike; it is
     included in the partials.
 

@@ -9,9 +9,9 @@ from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild import BILDGroup
 from bild_mdo.bild.annulus_stationarity import stationarity
-from bild_mdo.bild.eta2 import Eta2Comp
-from bild_mdo.bild.exact_eta2 import ExactEta2Comp
-from bild_mdo.bild.exact_ideal_loading import ExactIdealLoadingComp
+from bild_mdo.bild.variants.paper.eta2 import Eta2Comp
+from bild_mdo.bild.variants.exact.exact_eta2 import ExactEta2Comp
+from bild_mdo.bild.variants.exact.exact_ideal_loading import ExactIdealLoadingComp
 from bild_mdo.utils.testing import check_component_partials, check_group_totals
 from tests.bild.conftest import NN, NR, state
 

@@ -5,13 +5,13 @@ import pytest
 from openmdao.utils.assert_utils import assert_no_approx_partials
 from scipy.optimize import brentq
 
-from bild_mdo.bild import quartic as qc
-from bild_mdo.bild.eta2 import Eta2Comp, solve_eta2
-from bild_mdo.bild.ideal_loading import IdealLoadingComp
+from bild_mdo.bild.variants.paper import quartic as qc
+from bild_mdo.bild.variants.paper.eta2 import Eta2Comp, solve_eta2
+from bild_mdo.bild.variants.paper.ideal_loading import IdealLoadingComp
 from bild_mdo.utils.testing import assert_totals_match, check_component_partials
 
-from .conftest import NN, NR, state
-from .test_quartic import eq22_lambda, random_domain
+from tests.bild.conftest import NN, NR, state
+from tests.bild.variants.paper.test_quartic import eq22_lambda, random_domain
 
 
 def lift_coefficients(n, seed):
@@ -228,9 +228,9 @@ def test_solve_eta2_broadcasts_and_validates():
 
 def test_taylor_coefficients_expand_the_quartic_about_eta_one():
     # P(1 - t) = lam**4 sum_k q_k t**k (Eq. (27) expanded about eta = 1; the solve's polynomial), checked against
-    # the product form of bild_mdo.bild.quartic at t in [0, 1/2] to round-off of P's terms; q0 is P(1) of the
+    # the product form of bild_mdo.bild.variants.paper.quartic at t in [0, 1/2] to round-off of P's terms; q0 is P(1) of the
     # closed form (h(1) = -lam V_x, quartic module docstring), zero in hover.
-    from bild_mdo.bild.eta2 import _taylor_coefficients
+    from bild_mdo.bild.variants.paper.eta2 import _taylor_coefficients
 
     v_x, v_t, lam, s = random_domain(20_000, seed=15)
     q = _taylor_coefficients(v_x, v_t, lam, s)
@@ -247,7 +247,7 @@ def test_taylor_coefficients_expand_the_quartic_about_eta_one():
 def test_safeguarded_fallback_finds_the_same_root():
     # Every element solved by the fast path (explicit start, Newton, product-form step) and again by the bracketed
     # fallback alone (_solve_tail from eta = 1/2): the two roots of the same function agree to round-off.
-    from bild_mdo.bild.eta2 import _solve, _solve_tail
+    from bild_mdo.bild.variants.paper.eta2 import _solve, _solve_tail
 
     v_x, v_t, lam, s = random_domain(20_000, seed=16)
     eta, done = _solve(v_x, v_t, lam, s, v_x.shape)

@@ -17,7 +17,7 @@ import pytest
 
 from bild_mdo.airfoil import AnalyticPolar, naca4412
 from bild_mdo.bild import BILDGroup
-from bild_mdo.bild.eta2 import Eta2Comp, solve_eta2
+from bild_mdo.bild.variants.paper.eta2 import Eta2Comp, solve_eta2
 
 DESIGNS_PER_POLAR = 1000
 POINTS = 10_000

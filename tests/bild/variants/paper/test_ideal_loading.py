@@ -3,10 +3,10 @@ import numpy as np
 import openmdao.api as om
 import pytest
 
-from bild_mdo.bild.ideal_loading import IdealLoadingComp
+from bild_mdo.bild.variants.paper.ideal_loading import IdealLoadingComp
 from bild_mdo.utils.testing import check_component_partials
 
-from .conftest import NN, state
+from tests.bild.conftest import NN, state
 
 
 def reference_values(kind):

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from bild_mdo.bild import quartic as qc
+from bild_mdo.bild.variants.paper import quartic as qc
 from tools.derive_quartic import derive, paper_eq34_coefficients
 
 

@@ -5,7 +5,7 @@ import pytest
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.airfoil.compressibility import CompressiblePolar
 from bild_mdo.airfoil.spanwise import SpanwisePolar
-from bild_mdo.bild.reference_airfoil import ReferenceAirfoilComp
+from bild_mdo.bild.variants.reference_point.reference_airfoil import ReferenceAirfoilComp
 from bild_mdo.utils.testing import check_component_partials
 from tests.bild.conftest import NN, NR, state
 

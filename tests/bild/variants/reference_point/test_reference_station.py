@@ -4,7 +4,7 @@ import pytest
 
 from bild_mdo.bem.inflow_residual import inflow_residual_value
 from bild_mdo.bem.prandtl import prandtl_loss
-from bild_mdo.bild.reference_station import ReferenceStationComp
+from bild_mdo.bild.variants.reference_point.reference_station import ReferenceStationComp
 from bild_mdo.utils.testing import assert_totals_match, check_component_partials
 from tests.bild.conftest import NN, state
 
@@ -40,7 +40,7 @@ def test_one_design_and_the_bracketed_search_give_the_batch_root(kind, monkeypat
     # Designs do not interact: one design (run on NumPy scalars) has the root and partials it has in a
     # batch; and the bracketed search, which takes every node the Newton start does not accept, finds the
     # same root (one root in region 1, ReferenceStationComp._solve_region_one).
-    from bild_mdo.bild import reference_station
+    from bild_mdo.bild.variants.reference_point import reference_station
 
     values = state(kind)
     batch = check_component_partials(ReferenceStationComp(num_nodes=NN), values)

@@ -1,0 +1,124 @@
+"""The per-station solve of the paper's loading with the local section point, compiled (the method of
+:mod:`~bild_mdo.bild.variants.local_paper.solve`, whose docstring states it).
+
+Per station, in the inflow angle: on every sheet that the station's path meets
+as a minimum of ``cd/cl`` at the first angle (the paper loading at a typical
+``cd/cl``), the root of the quartic's physical factor ``h(phi)`` with the
+section point carried along the sheet
+(:func:`~bild_mdo.bild.variants.local_point.sheet_solve.sheet_solve`); of the
+roots the one of least ``cd/cl`` is kept.  Where the path of that solution
+meets a minimum of lower ``cd/cl`` on another sheet, the station is solved on
+that sheet too and takes it where its root has the lower ``cd/cl``
+(:data:`~bild_mdo.bild.variants.local_paper.solve.SWITCHES` times at most).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from bild_mdo.airfoil.load_path_table import X_STEP
+from bild_mdo.bild.variants.local_point.paper_kernels import paper_angle_one
+from bild_mdo.bild.variants.local_point.kernels import (
+    candidates_one,
+    momentum_one,
+    polish_one,
+    station_setup,
+    station_values_one,
+)
+from bild_mdo.bild.variants.local_point.sheet_solve import (
+    _HIGH,
+    _K_HUB,
+    _K_TIP,
+    _LAM,
+    _LOG_K,
+    _LOSS,
+    _LOW,
+    _OFFSET,
+    _PAPER,
+    _PARAMS_SIZE,
+    _STATE_SIZE,
+    _TORQUE,
+    _VT,
+    _VX,
+    _X,
+    _X_FIRST,
+    _set_sheet,
+    sheet_solve,
+)
+from bild_mdo.utils.compiled import kernel
+
+
+@kernel
+def solve_all(table, flow, num_blades, torque, loss, settings, out):
+    """Solve every station (module docstring).
+
+    ``flow[8, n]``: the stations (:func:`~bild_mdo.bild.variants.local_point.kernels.station_setup`; the bracket
+    ends at ``eta2 = 1/2`` with ``cd/cl = 0``); the first angle is the paper loading's at ``start_ratio``, at
+    ``lowest_ratio`` where that leaves the station unloaded;
+    ``settings``: ``(barrier, max_iter, angle_tol, root_step, start_ratio, lowest_ratio,
+    switches)``.  Writes ``out[n, 10]``: ``phi, x0, label, code`` (code 0 loaded, 1 unloaded, 4 outside the domain, 5 loaded past the
+    table's top) and, where loaded, the station's values
+    (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
+    """
+    coef, slots, cover_first, cover_last, offset, kind, _, _, _, grid, coef_ell, coef_alpha = table
+    sheets = (cover_first, cover_last, offset, kind)
+    x_first, nx, x_last = grid[0], int(grid[1]), grid[2]
+    barrier, max_iter, angle_tol, root_step, start_ratio, lowest_ratio, switches = settings
+    solve_settings = (barrier, max_iter, angle_tol, root_step)
+    k = slots.shape[2]
+    labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
+    st = np.zeros(_STATE_SIZE)
+    c = np.zeros(_PARAMS_SIZE)
+    c[_X_FIRST], c[_TORQUE], c[_LOSS], c[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
+    for j in range(flow.shape[1]):
+        row = out[j]
+        ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, 0.0)
+        if not ok:
+            row[0], row[1], row[2], row[3] = 0.0, math.nan, -1.0, 4.0
+            continue
+        c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
+        row[0], row[1], row[2], row[3] = lo_j, math.nan, -1.0, 1.0
+        # Hover: the quartic leaves the station unloaded at every cd/cl its path can reach.
+        if c[_VX] == 0.0 and c[_LAM] <= 0.5 * lowest_ratio * c[_VT]:
+            continue
+        first = paper_angle_one(c[_VX], c[_VT], c[_LAM], start_ratio)
+        if not math.isfinite(first):
+            first = paper_angle_one(c[_VX], c[_VT], c[_LAM], lowest_ratio)
+        first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
+        best_phi, best_x0, best_s, best_label, best_x = first, math.nan, math.inf, -1, math.nan
+        x_g, tau_g = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], first, start_ratio, torque,
+                                  loss)
+        count = candidates_one(slots, x_first, nx, x_g, tau_g, labels, x0s, scores)
+        for m in range(count):
+            x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, first, x0s[m],
+                                              grid, solve_settings)
+            if s < best_s:
+                best_phi, best_x0, best_s, best_label, best_x = x, x0_c, s, labels[m], st[_X]
+        # The solution's own path: a lower minimum there is the station's section point instead.
+        for _ in range(int(switches)):
+            if not (math.isfinite(best_s) and math.isfinite(best_x)):
+                break
+            tau_b = math.cos(best_phi) / math.sin(best_phi) if torque else -math.tan(best_phi)
+            found = candidates_one(slots, x_first, nx, best_x, tau_b, labels, x0s, scores)
+            moved = False
+            start_phi = best_phi
+            for m in range(found):
+                if labels[m] == best_label or not scores[m] < best_s * (1.0 - 1e-12):
+                    continue
+                x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, start_phi,
+                                                  x0s[m], grid, solve_settings)
+                if s < best_s:
+                    best_phi, best_x0, best_s, best_label, best_x = x, x0_c, s, labels[m], st[_X]
+                    moved = True
+            if not moved:
+                break
+        if math.isfinite(best_s):
+            _set_sheet(c, sheets, best_label)
+            row[1] = polish_one(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K], c[_K_TIP], c[_K_HUB],
+                                c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            row[0], row[2], row[3] = best_phi, best_label, 5.0 if row[1] > x_last - X_STEP else 0.0
+            values = station_values_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET],
+                                           c[_VX], c[_VT], best_phi, row[1], torque)
+            for q in range(6):
+                row[4 + q] = values[q]

@@ -1,0 +1,263 @@
+"""LocalReferenceComp: the reference station of the local-section-point variants, on the polar's load-path table."""
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.airfoil.load_path_table import load_path_table
+from bild_mdo.bem.prandtl import loss_inputs
+from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
+from bild_mdo.bild.variants.exact.exact_ideal_loading import check_reference_annulus
+from bild_mdo.bild.feasibility import report_infeasible
+from bild_mdo.bild.variants.local_point.gap import force_factors, gap_jets, reference_reynolds, take_reference, terms
+from bild_mdo.bild.variants.local_point.load_path_model import StationFlow
+from bild_mdo.bild.variants.local_point.options import declare_local_options
+from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, table_jets
+from bild_mdo.utils.jet import Jet, variable
+from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
+from bild_mdo.utils.sparsity import node_wrt_node
+
+#: Component input -> name of its partial in the jets.
+_INPUT_KEYS = {"v_axial": "v_axial", "v_theta_ref": "v_theta", "ref_radius": "r", "ref_chord": "chord",
+               "radius": "radius", "hub_radius": "hub_radius", "rho": "rho", "mu": "mu"}
+_POINT = ("alpha_star_ref", "cl_star_ref", "cd_star_ref")
+_REYNOLDS_INPUTS = ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu")
+_RE_ONLY = ("alpha_star_ref", "cl_star_ref", "cd_star_ref", "reynolds_ref")
+
+
+class LocalReferenceComp(om.ExplicitComponent):
+    """Inflow angle and section point of the reference station with the chord ``c_ref`` (local section point).
+
+    The reference station's BEM state with ``c_ref`` at the minimum of ``cd/cl``
+    along its own path of fixed load whose chord Reynolds number is ``Re_ref =
+    rho W0 c_ref / mu`` (:mod:`~bild_mdo.bild.variants.local_point.reference_solve`,
+    in the model of the polar's load-path table, so that a station of the same
+    model placed at ``r_ref`` has the chord ``c_ref``; in the Reynolds gap, the
+    exact rule described there).  With ``ideal_loading='exact'`` it also gives
+    lambda of the Reynolds-aware exact loading, ``N_tot / D_tot`` of the
+    reference annulus (its marginal energy loss per marginal thrust with the
+    section point following the load), so the station at ``r_ref`` solves its
+    residuals at the reference state.  Partials by the implicit-function
+    theorem on the two residuals of the state, all analytic.
+
+    A node whose reference state cannot be solved, or whose reference annulus
+    is past its maximum thrust (exact loading), is infeasible (placeholders,
+    zero partials).
+
+    Options: ``num_nodes``, ``num_blades``, ``loss_model``, ``chord_form``, ``polar``, ``feasibility``,
+    ``ideal_loading`` (``'paper'``: no lambda output; ``'exact'``).
+
+    Inputs
+    ------
+    v_axial[nn] (m/s), v_theta_ref[nn] (m/s), ref_radius[nn] (m), ref_chord[nn] (m), radius[nn] (m),
+    hub_radius[nn] (m), rho[nn] (kg/m**3), mu[nn] (Pa*s)
+
+    Outputs
+    -------
+    phi_ref[nn] (rad), alpha_star_ref[nn] (rad), cl_star_ref[nn], cd_star_ref[nn], reynolds_ref[nn],
+    load_reynolds_ref[nn], section_branch_ref[nn] (-1 in the Reynolds gap), ideal_loading_constant[nn] (m/s)
+    """
+
+    def initialize(self):
+        declare_local_options(self.options, radial=False)
+        self.options.declare("ideal_loading", default="paper", values=IDEAL_LOADINGS,
+                             desc="'exact': also lambda of the Reynolds-aware exact loading")
+        self._cache = None
+        self._table = None
+
+    def setup(self):
+        nn = self.options["num_nodes"]
+        add_inputs(self, ("v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius", "rho", "mu"))
+        add_outputs(self, ("phi_ref",))
+        for name in ("alpha_star", "cl_star", "cd_star"):
+            _, default, units, desc = VARIABLES[name]
+            self.add_output(f"{name}_ref", val=np.full(nn, default), units=units,
+                            desc=f"{desc} of the reference station's own path of fixed load")
+        self.add_output("reynolds_ref", val=np.full(nn, 3e5), units=None,
+                        desc="chord Reynolds number at the reference station (speed without induction)")
+        self.add_output("load_reynolds_ref", val=np.full(nn, 3e5), units=None,
+                        desc="load Reynolds number Re*C of the reference station")
+        self.add_output("section_branch_ref", val=np.zeros(nn), units=None,
+                        desc="sheet of the load-path table of the reference point (-1: the Reynolds gap)")
+        self._output_names = ["phi_ref", *_POINT, "reynolds_ref", "load_reynolds_ref"]
+        if self.options["ideal_loading"] == "exact":
+            add_outputs(self, ("ideal_loading_constant",))
+            self._output_names.append("ideal_loading_constant")
+        self._wrt = [name for name in _INPUT_KEYS if name not in ("radius", "hub_radius")
+                     or name in loss_inputs(self.options["loss_model"])]
+        rows, cols = node_wrt_node(nn)
+        # The section point lies on a curve of the polar that depends on Re alone (load_path), so it and Re_ref
+        # depend on the inputs of Re_ref only.
+        self._out_wrt = {out: [name for name in self._wrt if out not in _RE_ONLY or name in _REYNOLDS_INPUTS]
+                         for out in self._output_names}
+        for out, wrt in self._out_wrt.items():
+            self.declare_partials(out, wrt, rows=rows, cols=cols)
+
+    @property
+    def table(self):
+        if self._table is None:
+            self._table = load_path_table(self.options["polar"])
+        return self._table
+
+    def _flow(self, inputs, real=True):
+        get = (lambda name: np.real(inputs[name])) if real else (lambda name: inputs[name])
+        opts = self.options
+        return ReferenceFlow(*(get(name) for name in _INPUT_KEYS), num_blades=opts["num_blades"],
+                             loss_model=opts["loss_model"], chord_form=opts["chord_form"])
+
+    def _solve(self, inputs):
+        key = np.concatenate([np.real(inputs[name]) for name in _INPUT_KEYS])
+        if self._cache is not None and np.array_equal(self._cache["key"], key):
+            return self._cache
+        ref = self._flow(inputs)
+        solution = solve_reference(self.table, self.options["polar"], ref)
+        report_infeasible(self, "reference_point", ~solution.ok,
+                          "local section point: the reference station's BEM state at its own section point did not "
+                          "converge (check ref_chord and the operating point)",
+                          {"ref_chord [m]": ref.chord, "Re_ref": reference_reynolds(ref)})
+        values = self._values(ref, solution)
+        self._cache = {"key": key, "solution": solution, "values": values, "linear": None}
+        if self.options["ideal_loading"] == "exact":
+            states = {"phi_ref": solution.phi, "v_axial": ref.v_axial, "v_theta_ref": ref.v_theta}
+            failed = check_reference_annulus(self, states, values["lambda_n"], values["lambda_d"],
+                                             "Reynolds-aware exact ideal loading", "D_tot = 0")
+            self._cache["lam_failed"] = failed | ~solution.ok
+        return self._cache
+
+    def _values(self, ref, solution):
+        """The outputs at the solved states (values only; the Reynolds gap through its jets)."""
+        n = ref.r.size
+        values = {name: np.zeros(n) for name in self._output_names}
+        values["phi_ref"] = solution.phi.copy()
+        values["lambda_n"], values["lambda_d"] = np.ones(n), np.ones(n)
+        at = np.flatnonzero(solution.on_table & solution.ok)
+        if at.size:
+            point = self.table.curve(solution.x0[at], solution.label[at])
+            s, ell = point["s"].f, point["ell"].f
+            cl = np.exp(solution.x0[at] - ell)
+            p, q = force_factors(solution.phi[at], ref.chord_form)
+            values["alpha_star_ref"][at], values["cl_star_ref"][at], values["cd_star_ref"][at] = (
+                point["alpha"].f, cl, s * cl)
+            values["load_reynolds_ref"][at] = p * np.exp(solution.x0[at]) * (1.0 + (q / p) * s)
+            if self.options["ideal_loading"] == "exact":
+                values["lambda_n"][at], values["lambda_d"][at] = solution.n_tot[at], solution.d_tot[at]
+                with np.errstate(all="ignore"):
+                    values["ideal_loading_constant"][at] = solution.n_tot[at] / solution.d_tot[at]
+        gap = np.flatnonzero(~solution.on_table & solution.ok)
+        if gap.size:
+            _, _, outputs, lam = self._gap_jets(take_reference(ref, gap), solution, gap)
+            for name, jet in outputs.items():
+                values[name][gap] = np.real(jet.v)
+            if lam is not None:
+                values["lambda_n"][gap], values["lambda_d"][gap] = np.real(lam[0]), np.real(lam[1])
+        return values
+
+    def _linear(self, ref, solution):
+        """Partials of the outputs with respect to the inputs (the states eliminated by the implicit-function
+        theorem)."""
+        n = ref.r.size
+        keys = list(_INPUT_KEYS.values())
+        partials = {(out, wrt): np.zeros(n) for out in self._output_names for wrt in keys}
+        for at, jets_of in ((np.flatnonzero(solution.on_table & solution.ok), self._table_jets),
+                            (np.flatnonzero(~solution.on_table & solution.ok), self._gap_jets)):
+            if at.size == 0:
+                continue
+            residuals, states, outputs, _ = jets_of(take_reference(ref, at), solution, at)
+            jac = np.stack([np.stack([np.broadcast_to(r.partial(k), (at.size,)) for k in states], axis=-1)
+                            for r in residuals], axis=-2)
+            rhs = np.stack([np.stack([np.broadcast_to(r.partial(k), (at.size,)) for k in keys], axis=-1)
+                            for r in residuals], axis=-2)
+            with np.errstate(all="ignore"):
+                sens = -np.linalg.solve(jac, rhs)
+            for out, jet in outputs.items():
+                for j, k in enumerate(keys):
+                    partials[out, k][at] = (np.broadcast_to(jet.partial(k), (at.size,))
+                                            + sum(np.broadcast_to(jet.partial(st), (at.size,)) * sens[:, i, j]
+                                                  for i, st in enumerate(states)))
+        return partials
+
+    def _table_jets(self, ref, solution, at):
+        residuals, (n_tot, d_tot), alpha, cl, cd, load = table_jets(self.table, ref, solution.phi[at],
+                                                                     solution.x0[at], solution.label[at])
+        outputs = {"phi_ref": variable(solution.phi[at], "phi"), "alpha_star_ref": alpha, "cl_star_ref": cl,
+                   "cd_star_ref": cd, "load_reynolds_ref": load}
+        lam = None
+        if self.options["ideal_loading"] == "exact":
+            outputs["ideal_loading_constant"] = n_tot / d_tot
+            lam = (n_tot.v, d_tot.v)
+        return residuals, ("phi", "x0"), outputs, lam
+
+    def _gap_jets(self, ref, solution, at):
+        jets = gap_jets(self.options["polar"], ref, solution.phi[at], solution.alpha[at])
+        outputs = {"phi_ref": variable(solution.phi[at], "phi"), "alpha_star_ref": variable(solution.alpha[at], "alpha"),
+                   "cl_star_ref": jets.cl, "cd_star_ref": jets.cd, "load_reynolds_ref": jets.load_reynolds}
+        lam = None
+        if self.options["ideal_loading"] == "exact":
+            opts = self.options
+            flow = StationFlow(np.ones(at.size), ref.v_axial, ref.v_theta, ref.r, ref.radius, ref.hub_radius, ref.rho,
+                        ref.mu, opts["num_blades"], opts["loss_model"], opts["chord_form"])
+            re_real = np.real(jets.reynolds.v)
+            item = terms(opts["polar"], solution.phi[at], solution.alpha[at], re_real, flow)
+            ratio = item.n_tot / item.d_tot
+            # Re is a function of the inputs here: its partial chained, its complex part carried to first order.
+            d = {k: v for k, v in ratio.d.items() if k != "re"}
+            for k, x in jets.reynolds.d.items():
+                d[k] = d.get(k, 0.0) + ratio.partial("re") * x
+            outputs["ideal_loading_constant"] = Jet(ratio.v + ratio.partial("re") * (jets.reynolds.v - re_real), d)
+            lam = (item.n_tot.v, item.d_tot.v)
+        return (jets.bem, jets.g), ("phi", "alpha"), outputs, lam
+
+    def compute(self, inputs, outputs):
+        cache = self._solve(inputs)
+        solution = cache["solution"]
+        result = {name: cache["values"][name].copy() for name in self._output_names}
+        if self.under_complex_step:
+            # The states are real; one Newton update in complex arithmetic carries their derivatives, and the
+            # outputs are evaluated with the complex inputs (jets of the model, not of its partials).
+            ref = self._flow(inputs, real=False)
+            for name in result:
+                result[name] = result[name].astype(complex)
+            for at, jets_of in ((np.flatnonzero(solution.on_table & solution.ok), self._table_jets),
+                                (np.flatnonzero(~solution.on_table & solution.ok), self._gap_jets)):
+                if at.size == 0:
+                    continue
+                residuals, states, outs, _ = jets_of(take_reference(ref, at), solution, at)
+                jac = np.stack([np.stack([np.real(np.broadcast_to(r.partial(k), (at.size,))) for k in states],
+                                         axis=-1) for r in residuals], axis=-2)
+                imag = np.stack([np.imag(r.v) for r in residuals], axis=-1)
+                with np.errstate(all="ignore"):
+                    d_state = -np.linalg.solve(jac, imag[..., None])[..., 0]
+                for name, jet in outs.items():
+                    if name == "phi_ref":
+                        result[name][at] = solution.phi[at] + 1j * d_state[:, 0]
+                        continue
+                    carried = np.imag(jet.v) + sum(np.real(np.broadcast_to(jet.partial(st), (at.size,)))
+                                                   * d_state[:, i] for i, st in enumerate(states))
+                    result[name][at] = np.real(result[name][at]) + 1j * carried
+        if "ideal_loading_constant" in result:
+            result["ideal_loading_constant"] = np.where(cache["lam_failed"], inputs["v_theta_ref"],
+                                                        result["ideal_loading_constant"])
+        result["reynolds_ref"] = reference_reynolds(self._flow(inputs, real=False))
+        for name, value in result.items():
+            outputs[name] = value
+        outputs["section_branch_ref"] = np.where(solution.on_table, solution.label, -1).astype(float)
+
+    def compute_partials(self, inputs, partials):
+        cache = self._solve(inputs)
+        if cache["linear"] is None:
+            cache["linear"] = self._linear(self._flow(inputs), cache["solution"])
+        linear = cache["linear"]
+        ok = cache["solution"].ok
+        ref = self._flow(inputs)
+        re = reference_reynolds(ref)
+        w0sq = ref.v_axial ** 2 + ref.v_theta ** 2
+        d_re = {"v_axial": re * ref.v_axial / w0sq, "v_theta_ref": re * ref.v_theta / w0sq,
+                "ref_chord": re / ref.chord, "rho": re / ref.rho, "mu": -re / ref.mu}
+        for out in self._output_names:
+            for wrt in self._out_wrt[out]:
+                if out == "reynolds_ref":
+                    partials[out, wrt] = d_re[wrt]
+                    continue
+                value = np.where(ok, linear[out, _INPUT_KEYS[wrt]], 0.0)
+                if out == "ideal_loading_constant":
+                    failed = cache["lam_failed"]
+                    value = np.where(failed, 1.0 if wrt == "v_theta_ref" else 0.0, value)
+                partials[out, wrt] = value

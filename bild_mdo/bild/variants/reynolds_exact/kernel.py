@@ -1,0 +1,210 @@
+"""The per-station solve of the Reynolds-aware exact loading, compiled (the method of
+:mod:`~bild_mdo.bild.variants.reynolds_exact.solve`, whose docstring states it).
+
+:func:`solve_all` runs, for every station in turn, the steps of that
+docstring: the sheets its path meets at the first angle, lowest ``cd/cl``
+first; a grid search where none gives a candidate; then the other sheets the
+path meets at the solution and the sheets that end at a fold next to it, each
+unless a Newton model of its ``Phi`` shows it cannot beat the best; finally one
+Newton step on ``R2`` at the chosen angle.  Every bracketed solve is
+:func:`~bild_mdo.bild.variants.local_point.sheet_solve.sheet_solve` on
+:func:`sheet_value` of one sheet, whose ``state`` array records the station's
+last trials on it (slots ``_X0`` ... below).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from bild_mdo.airfoil.load_path_table import X_STEP
+from bild_mdo.bild.variants.local_point.paper_kernels import paper_angle_one
+from bild_mdo.bild.variants.local_point.kernels import (
+    candidates_one,
+    momentum_one,
+    polish_one,
+    station_setup,
+    station_values_one,
+)
+from bild_mdo.bild.variants.local_point.sheet_solve import (
+    _COVERED,
+    _D_TOT,
+    _F,
+    _K_HUB,
+    _K_TIP,
+    _LAM,
+    _LOG_K,
+    _LOSS,
+    _OBJECTIVE,
+    _OFFSET,
+    _PARAMS_SIZE,
+    _RATE,
+    _SLOPE,
+    _STATE_SIZE,
+    _TORQUE,
+    _VT,
+    _VX,
+    _X,
+    _X0,
+    _X_FIRST,
+    _HIGH,
+    _LOW,
+    _fresh,
+    _set_sheet,
+    _sign,
+    sheet_solve,
+    sheet_value,
+)
+from bild_mdo.utils.compiled import kernel
+
+@kernel
+def solve_all(table, flow, num_blades, guess, first_label, torque, loss, settings, probes, search, out):
+    """Solve every station (module docstring).
+
+    ``flow[8, n]``: the stations (:func:`~bild_mdo.bild.variants.local_point.kernels.station_setup`); the first
+    angle is the paper loading's at ``start_ratio``; ``guess, first_label[n]``: a warm start (NaN, -1: none), the angle
+    where the solve on sheet ``first_label`` begins; ``settings``: ``(barrier,
+    max_iter, angle_tol, root_step, start_ratio, prune_factor, fold_window, fold_margin)``; ``probes``: the
+    probe steps; ``search``: the fractions of the bracket of the grid search.  Writes ``out[n, 11]``: ``phi,
+    x0, label, code, Phi`` (code 0 loaded, 1 unloaded, 3 overloaded, 4 outside the domain, 5 loaded past the table's
+    top) and, where
+    loaded, the station's values (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
+    """
+    coef, slots, cover_first, cover_last, offset, kind, end_x0, end_label, end_inward, grid, coef_ell, coef_alpha = table
+    sheets = (cover_first, cover_last, offset, kind)
+    x_first, nx, x_last = grid[0], int(grid[1]), grid[2]
+    barrier, max_iter, angle_tol, root_step, start_ratio, prune, window, margin = settings
+    solve_settings = (barrier, max_iter, angle_tol, root_step)
+    k = slots.shape[2]
+    labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
+    near_label = np.empty(k + end_x0.size, dtype=np.int64)
+    near_x0, near_phi = np.empty(k + end_x0.size), np.empty(k + end_x0.size)
+    st = np.zeros(_STATE_SIZE)
+    c = np.zeros(_PARAMS_SIZE)
+    c[_X_FIRST], c[_TORQUE], c[_LOSS] = x_first, 1.0 if torque else 0.0, loss
+    for j in range(guess.size):
+        row = out[j]
+        ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, start_ratio)
+        if not ok:
+            row[0], row[1], row[2], row[3], row[4] = 0.0, math.nan, -1.0, 4.0, math.inf
+            continue
+        c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
+        first = paper_angle_one(c[_VX], c[_VT], c[_LAM], start_ratio)
+        first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
+        warm = guess[j] if math.isfinite(guess[j]) else first
+        best_phi, best_x0, best_obj, best_label = first, math.nan, math.inf, -1
+        best_x, best_rate = math.nan, math.nan
+        overloaded, above = False, False
+        tried = 0
+        x_g, tau_g = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], first, start_ratio, torque,
+                                  loss)
+        count = candidates_one(slots, x_first, nx, x_g, tau_g, labels, x0s, scores)
+        # The sheet of least cd/cl at the first angle; the next one where it gave no load.
+        for _ in range(count):
+            if best_obj < 0.0 or overloaded:
+                break
+            m = 0
+            for q in range(1, count):
+                if scores[q] < scores[m]:
+                    m = q
+            if scores[m] == math.inf:
+                break
+            scores[m] = math.inf
+            # A warm start changes only where the solve on the station's last sheet begins, not which sheets are
+            # tried: the design stays the one a cold start finds.
+            start = warm if labels[m] == first_label[j] else first
+            x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0,
+                                                                   start, x0s[m], grid, solve_settings)
+            if obj < best_obj:
+                best_phi, best_x0, best_obj, best_label = x, x0_c, obj, labels[m]
+                best_x, best_rate = st[_X], st[_RATE]
+            if converged and residual < 0.0 and hi_j - x <= 1e-9:
+                overloaded = True
+            if valid:
+                above = above or st[_X0] > x_last - X_STEP
+                tried |= 1 << labels[m]
+        # No candidate at the first angle: a search of the angles for a minimum on any sheet.
+        if not math.isfinite(best_obj) and not overloaded:
+            for fraction in search:
+                phi_g = lo_j + fraction * (hi_j - lo_j)
+                x_s, tau_s = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], phi_g, start_ratio,
+                                          torque, loss)
+                found = candidates_one(slots, x_first, nx, x_s, tau_s, labels, x0s, scores)
+                for m in range(found):
+                    x, x0_c, obj, valid, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, phi_g,
+                                                            x0s[m], grid, solve_settings)
+                    if obj < best_obj:
+                        best_phi, best_x0, best_obj, best_label = x, x0_c, obj, labels[m]
+                        best_x, best_rate = st[_X], st[_RATE]
+        # The other sheets next to the solution: those its path meets there, and those that end at a fold within
+        # the window of its coordinate (probed where the coordinate reaches them).
+        near = 0
+        if math.isfinite(best_obj):
+            if math.isfinite(best_x):
+                tau_b = math.cos(best_phi) / math.sin(best_phi) if torque else -math.tan(best_phi)
+                found = candidates_one(slots, x_first, nx, best_x, tau_b, labels, x0s, scores)
+                for m in range(found):
+                    if not (tried >> labels[m]) & 1 and labels[m] != best_label:
+                        near_label[near], near_x0[near], near_phi[near] = labels[m], x0s[m], best_phi
+                        near += 1
+            if math.isfinite(best_rate) and best_rate != 0.0:
+                for e in range(end_x0.size):
+                    if end_x0[e] < best_x0 - window or end_x0[e] >= best_x0 + window:
+                        continue
+                    label = end_label[e]
+                    target = end_x0[e] + end_inward[e] * (margin * X_STEP)
+                    phi_p = best_phi + (target - best_x0) / best_rate
+                    if not (tried >> label) & 1 and label != best_label and lo_j < phi_p < hi_j:
+                        near_label[near], near_x0[near], near_phi[near] = label, target, phi_p
+                        near += 1
+        best_ref = best_obj
+        for m in range(near):
+            phi_m = near_phi[m]
+            _set_sheet(c, sheets, near_label[m])
+            _fresh(st, near_x0[m])
+            sheet_value(phi_m, st, (coef, c, barrier))
+            here, slope, d_tot = st[_F], st[_SLOPE], st[_D_TOT]
+            if not (st[_COVERED] > 0.0 and d_tot > 0.0):
+                continue
+            drop = 0.5 * abs(d_tot) * here * here / abs(slope)
+            if not st[_OBJECTIVE] - prune * (drop if math.isfinite(drop) else math.inf) < best_ref:
+                continue
+            x0_here = st[_X0]
+            step = abs(here / slope)
+            direction = -1.0 if here > 0.0 else 1.0
+            step = min(max(step, 0.001), 0.15) if (math.isfinite(step) and slope > 0.0) else probes[0]
+            far = min(max(phi_m + 2.0 * direction * step, lo_j), hi_j)
+            f_lo = -_sign(here) if far < phi_m else _sign(here)
+            x, x0_c, obj, valid, _, _ = sheet_solve(coef, sheets, c, st, near_label[m], min(phi_m, far),
+                                                    max(phi_m, far), f_lo, phi_m + direction * step, x0_here, grid,
+                                                    solve_settings)
+            if obj < best_obj:
+                best_phi, best_x0, best_obj, best_label = x, x0_c, obj, near_label[m]
+            if valid or abs(x - far) > 1e-9:
+                continue
+            # The root is not within twice the Newton step: probe for a bracket.
+            edge = hi_j if direction > 0.0 else lo_j
+            for size in probes:
+                probe = min(max(phi_m + direction * (size + 2.0 * step), lo_j), hi_j)
+                _fresh(st, x0_here)
+                value = sheet_value(probe, st, (coef, c, barrier))[0]
+                if value != -1.0 and _sign(value) != _sign(here):
+                    f_lo = -_sign(here) if probe < phi_m else _sign(here)
+                    x, x0_c, obj, _, _, _ = sheet_solve(coef, sheets, c, st, near_label[m], min(phi_m, probe),
+                                                        max(phi_m, probe), f_lo, phi_m, x0_here, grid, solve_settings)
+                    if obj < best_obj:
+                        best_phi, best_x0, best_obj, best_label = x, x0_c, obj, near_label[m]
+                    break
+                if value == -1.0 or probe == edge:
+                    break
+        if math.isfinite(best_obj) and best_obj < 0.0:
+            _set_sheet(c, sheets, best_label)
+            row[1] = polish_one(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K], c[_K_TIP], c[_K_HUB],
+                                c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            row[0], row[2], row[3], row[4] = best_phi, best_label, 5.0 if above else 0.0, best_obj
+            values = station_values_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET],
+                                           c[_VX], c[_VT], best_phi, row[1], torque)
+            for q in range(6):
+                row[5 + q] = values[q]
+        else:
+            row[0], row[1], row[2], row[3], row[4] = lo_j, math.nan, -1.0, 3.0 if overloaded else 1.0, best_obj

@@ -1,0 +1,84 @@
+"""LocalReferenceComp: the reference station of the local-point variants, on the load-path table and in the gap.
+
+Sources: complex step (partials), the definition of the reference point (the lowest minimum of cd/cl along
+its own path of fixed load at Re_ref = rho W0 c_ref / mu, with the blade element carrying the momentum load),
+and the Reynolds gap of the NACA 4412 surrogate next to the fold of its load-path table (Re ~2.1e5 to 2.2e5,
+measured on the table: no sheet covers it there), where the state is solved on the polar instead.
+"""
+import numpy as np
+import openmdao.api as om
+import pytest
+from openmdao.utils.assert_utils import assert_check_partials
+
+from bild_mdo.airfoil.load_path_table import load_path_table
+from bild_mdo.bild.variants.reference_point.reference_airfoil import default_polar
+from bild_mdo.bild.variants.local_point.gap import reference_reynolds
+from bild_mdo.bild.variants.local_point.reference import LocalReferenceComp
+from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, table_jets
+
+#: Inputs of four designs; the chords put Re_ref at ~1.2e5, ~2.15e5 (the gap), ~5e5 and ~1.3e6.
+INPUTS = dict(v_axial=[0.0, 10.0, 30.0, 0.0], v_theta_ref=[50.0, 60.0, 70.0, 80.0],
+              ref_radius=[0.75, 0.7, 0.6, 0.9], radius=1.5, hub_radius=0.3, rho=1.1, mu=1.75e-5)
+
+
+def _chords():
+    w0 = np.hypot(INPUTS["v_axial"], INPUTS["v_theta_ref"])
+    return np.array([1.2e5, 2.15e5, 5e5, 1.3e6]) * 1.75e-5 / (1.1 * w0)
+
+
+def _problem(ideal_loading, chord_form):
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("c", LocalReferenceComp(num_nodes=4, polar=default_polar(), chord_form=chord_form,
+                                                     ideal_loading=ideal_loading), promotes=["*"])
+    prob.setup(force_alloc_complex=True)
+    for name, value in dict(INPUTS, ref_chord=_chords()).items():
+        prob.set_val(name, value)
+    prob.run_model()
+    return prob
+
+
+@pytest.mark.parametrize("ideal_loading", ["paper", "exact"])
+@pytest.mark.parametrize("chord_form", ["thrust", "torque"])
+def test_reference_partials(ideal_loading, chord_form):
+    prob = _problem(ideal_loading, chord_form)
+    branch = prob.get_val("section_branch_ref")
+    assert branch[1] == -1 and np.all(branch[[0, 2, 3]] >= 0)  # the gap and three table states
+    assert_check_partials(prob.check_partials(method="cs", out_stream=None), atol=1e-8, rtol=1e-7)
+
+
+@pytest.mark.parametrize("chord_form", ["thrust", "torque"])
+def test_reference_state_is_a_minimum_at_re_ref(chord_form):
+    # On the table the state has R2 = 0 (the element carries the momentum load) and ln Re = ln Re_ref, and it is
+    # a minimum of cd/cl along its own path (kind (1 + tau s' / (1 + tau s)) > 0, load_path's docstring).
+    table = load_path_table(default_polar())
+    chords = _chords()
+    ref = ReferenceFlow(*(np.broadcast_to(np.asarray(INPUTS[name], dtype=float), (4,)).copy()
+                          for name in ("v_axial", "v_theta_ref", "ref_radius")), chords,
+                        *(np.full(4, INPUTS[name]) for name in ("radius", "hub_radius", "rho", "mu")),
+                        num_blades=3, loss_model="tip_hub", chord_form=chord_form)
+    sol = solve_reference(table, default_polar(), ref)
+    assert np.all(sol.ok) and np.array_equal(sol.on_table, [True, False, True, True])
+    at = np.flatnonzero(sol.on_table)
+    take = ref._replace(**{name: getattr(ref, name)[at] for name in ("v_axial", "v_theta", "r", "chord", "radius",
+                                                                     "hub_radius", "rho", "mu")})
+    (r2, r_ell), *_ = table_jets(table, take, sol.phi[at], sol.x0[at], sol.label[at])
+    assert np.max(np.abs(r2.v)) < 1e-12 and np.max(np.abs(r_ell.v)) < 1e-12
+    np.testing.assert_allclose(np.exp(table.curve(sol.x0[at], sol.label[at], ("ell",))["ell"].f),
+                               reference_reynolds(take), rtol=1e-12)
+    tau = -np.tan(sol.phi[at]) if chord_form == "thrust" else 1.0 / np.tan(sol.phi[at])
+    s = table.curve(sol.x0[at], sol.label[at], ("s",))["s"]
+    assert np.all(table.kind[sol.label[at]] * (1.0 + tau * s.f1 / (1.0 + tau * s.f)) > 0.0)
+
+
+def test_reference_state_does_not_depend_on_the_batch():
+    prob = _problem("exact", "thrust")
+    for node in range(4):
+        alone = om.Problem(reports=False)
+        alone.model.add_subsystem("c", LocalReferenceComp(num_nodes=1, polar=default_polar(), ideal_loading="exact"),
+                                  promotes=["*"])
+        alone.setup()
+        for name, value in dict(INPUTS, ref_chord=_chords()).items():
+            alone.set_val(name, np.broadcast_to(np.asarray(value, dtype=float), (4,))[node])
+        alone.run_model()
+        for name in ("phi_ref", "alpha_star_ref", "cl_star_ref", "cd_star_ref", "ideal_loading_constant"):
+            np.testing.assert_array_equal(alone.get_val(name)[0], prob.get_val(name)[node])
