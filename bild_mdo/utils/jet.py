@@ -78,3 +78,26 @@ class Jet:
 def variable(value, name):
     """The independent variable ``name`` at ``value`` (partial 1 with respect to itself)."""
     return Jet(value, {name: 1.0})
+
+
+def jacobian(jets, names, size, real=True):
+    """The partials of ``jets`` with respect to ``names`` as one array ``[size, len(jets), len(names)]``.
+
+    Each partial is broadcast to ``size`` elements (a missing name gives zeros); with ``real`` the real parts.
+    """
+    jets = list(jets)
+    dtype = float if real else np.result_type(*(x for jet in jets for x in jet.d.values()), float)
+    out = np.zeros((size, len(jets), len(names)), dtype=dtype)
+    for i, jet in enumerate(jets):
+        for j, name in enumerate(names):
+            x = jet.d.get(name)
+            if x is not None:
+                out[:, i, j] = np.real(x) if real else x
+    return out
+
+
+def eliminate(outputs, states, names, sens, size):
+    """Total partials ``[size, len(outputs), len(names)]`` of ``outputs`` with the states eliminated:
+    ``d out / d name + d out / d states @ sens`` (``sens[size, states, names]`` = ``d states / d names``)."""
+    outputs = list(outputs)
+    return jacobian(outputs, names, size) + jacobian(outputs, states, size) @ sens

@@ -11,7 +11,7 @@ from bild_mdo.bild.variants.local_point.gap import force_factors, gap_jets, refe
 from bild_mdo.bild.variants.local_point.load_path_model import StationFlow
 from bild_mdo.bild.variants.local_point.options import declare_local_options
 from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, table_jets
-from bild_mdo.utils.jet import Jet, variable
+from bild_mdo.utils.jet import Jet, eliminate, jacobian, variable
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
 from bild_mdo.utils.sparsity import node_wrt_node
 
@@ -161,17 +161,14 @@ class LocalReferenceComp(om.ExplicitComponent):
             if at.size == 0:
                 continue
             residuals, states, outputs, _ = jets_of(take_reference(ref, at), solution, at)
-            jac = np.stack([np.stack([np.broadcast_to(r.partial(k), (at.size,)) for k in states], axis=-1)
-                            for r in residuals], axis=-2)
-            rhs = np.stack([np.stack([np.broadcast_to(r.partial(k), (at.size,)) for k in keys], axis=-1)
-                            for r in residuals], axis=-2)
+            jac = jacobian(residuals, states, at.size)
+            rhs = jacobian(residuals, keys, at.size)
             with np.errstate(all="ignore"):
                 sens = -np.linalg.solve(jac, rhs)
-            for out, jet in outputs.items():
+            totals = eliminate(outputs.values(), states, keys, sens, at.size)
+            for i, out in enumerate(outputs):
                 for j, k in enumerate(keys):
-                    partials[out, k][at] = (np.broadcast_to(jet.partial(k), (at.size,))
-                                            + sum(np.broadcast_to(jet.partial(st), (at.size,)) * sens[:, i, j]
-                                                  for i, st in enumerate(states)))
+                    partials[out, k][at] = totals[:, i, j]
         return partials
 
     def _table_jets(self, ref, solution, at):
@@ -220,17 +217,16 @@ class LocalReferenceComp(om.ExplicitComponent):
                 if at.size == 0:
                     continue
                 residuals, states, outs, _ = jets_of(take_reference(ref, at), solution, at)
-                jac = np.stack([np.stack([np.real(np.broadcast_to(r.partial(k), (at.size,))) for k in states],
-                                         axis=-1) for r in residuals], axis=-2)
+                jac = jacobian(residuals, states, at.size)
                 imag = np.stack([np.imag(r.v) for r in residuals], axis=-1)
                 with np.errstate(all="ignore"):
                     d_state = -np.linalg.solve(jac, imag[..., None])[..., 0]
-                for name, jet in outs.items():
+                state_partials = jacobian(outs.values(), states, at.size)
+                for i, (name, jet) in enumerate(outs.items()):
                     if name == "phi_ref":
                         result[name][at] = solution.phi[at] + 1j * d_state[:, 0]
                         continue
-                    carried = np.imag(jet.v) + sum(np.real(np.broadcast_to(jet.partial(st), (at.size,)))
-                                                   * d_state[:, i] for i, st in enumerate(states))
+                    carried = np.imag(jet.v) + np.einsum("ns,ns->n", state_partials[:, i], d_state)
                     result[name][at] = np.real(result[name][at]) + 1j * carried
         if "ideal_loading_constant" in result:
             result["ideal_loading_constant"] = np.where(cache["lam_failed"], inputs["v_theta_ref"],

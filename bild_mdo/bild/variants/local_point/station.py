@@ -24,6 +24,7 @@ from bild_mdo.bem.prandtl import loss_inputs
 from bild_mdo.bild.feasibility import report_station_status
 from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, StationFlow, take
 from bild_mdo.bild.variants.local_point.options import declare_local_options, placeholder_point
+from bild_mdo.utils.jet import eliminate, jacobian
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -170,11 +171,13 @@ class LocalStationComp(om.ExplicitComponent):
             at = np.flatnonzero(cache["status"] == self.LOADED)
             flow = take(self._flow(inputs), at)
             residuals, names, outputs = self.jets(flow, tuple(x[at] for x in cache["states"]), cache["label"][at])
-            jac = _stack(residuals, names, at.size)
-            rhs = _stack(residuals, INPUTS, at.size)
+            jac = jacobian(residuals, names, at.size)
+            rhs = jacobian(residuals, INPUTS, at.size)
             with np.errstate(all="ignore"):
                 sens = -np.linalg.solve(jac, rhs)  # [n, states, inputs]
-            cache["linear"] = (at, names, outputs, jac, sens)
+            # [n, outputs, inputs]: the partials of OUTPUTS with the states eliminated.
+            totals = eliminate((outputs[name] for name in OUTPUTS), names, INPUTS, sens, at.size)
+            cache["linear"] = (at, names, outputs, jac, totals)
         return cache["linear"]
 
     def compute(self, inputs, outputs):
@@ -190,10 +193,9 @@ class LocalStationComp(om.ExplicitComponent):
                 imag = np.stack([np.imag(r.v) for r in residuals], axis=-1)
                 with np.errstate(all="ignore"):
                     d_state = -np.linalg.solve(jac, imag[..., None])[..., 0]
-                for name in OUTPUTS:
-                    carried = np.imag(complex_outputs[name].v) + sum(
-                        np.broadcast_to(real_outputs[name].partial(k), (at.size,)) * d_state[:, j]
-                        for j, k in enumerate(names))
+                state_partials = jacobian((real_outputs[name] for name in OUTPUTS), names, at.size)
+                for i, name in enumerate(OUTPUTS):
+                    carried = np.imag(complex_outputs[name].v) + np.einsum("ns,ns->n", state_partials[:, i], d_state)
                     values[name] = values[name].astype(complex)
                     values[name][at] = values[name][at] + 1j * carried
         for name in OUTPUTS:
@@ -203,19 +205,10 @@ class LocalStationComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         cache = self._solve(inputs)
         n = cache["label"].size
-        at, names, jets, _, sens = self._linear(inputs, cache)
+        at, _, _, _, totals = self._linear(inputs, cache)
         for wrt, key in list(_DIST.items()) + list(self._node.items()):
             j = INPUTS.index(key)
-            for name in OUTPUTS:
-                jet = jets[name]
+            for i, name in enumerate(OUTPUTS):
                 value = np.zeros(n)
-                if at.size:
-                    value[at] = np.broadcast_to(jet.partial(key), (at.size,)) + sum(
-                        np.broadcast_to(jet.partial(state), (at.size,)) * sens[:, i, j] for i, state in enumerate(names))
+                value[at] = totals[:, i, j]
                 partials[name, wrt] = value
-
-
-def _stack(residuals, names, n):
-    """``d residuals / d names`` stacked ``[n, len(residuals), len(names)]``."""
-    return np.stack([np.stack([np.broadcast_to(np.real(r.partial(k)), (n,)) for k in names], axis=-1)
-                     for r in residuals], axis=-2)
