@@ -217,9 +217,11 @@ def main(repeats=40):
                   f"(run_model {run * 1e3:7.3f} ms) ratio {total / run:5.2f}x; CPU {total_cpu * 1e3:7.3f} ms "
                   f"(run_model {run_cpu * 1e3:7.3f} ms) ratio {total_cpu / run_cpu:5.2f}x (target <= 2x)")
 
-    design_rotor(airfoil=polar)  # builds and caches the model
-    times = [timed(lambda: design_rotor(airfoil=polar)) for _ in range(20)]
-    print(f"  design_rotor() for one design, cached model: median {statistics.median(times) * 1e3:7.3f} ms")
+    for analysis in (True, False):
+        design_rotor(airfoil=polar, bem_analysis=analysis)  # builds and caches the models
+        times = [timed(lambda: design_rotor(airfoil=polar, bem_analysis=analysis)) for _ in range(20)]
+        label = "with the BEM analysis of its blade (default)" if analysis else "bem_analysis=False"
+        print(f"  design_rotor() for one design, cached model, {label}: median {statistics.median(times) * 1e3:7.3f} ms")
 
 
 if __name__ == "__main__":

@@ -18,7 +18,7 @@ served from a cache):
 * a thrust target: ``design_rotor(thrust=T)`` against ``design_rotor(ref_chord=c)``
   of the same variant (``T`` the variant's own thrust at ``c``, the solve
   starting from the model's last reference chord), both with the model
-  cached (``design_rotor`` keeps four set-up models, so these two are timed
+  cached and without the BEM analysis of the blade (``bem_analysis=False``) (``design_rotor`` keeps four set-up models, so these two are timed
   interleaved variant by variant, not across the variants), and the ratio of
   the two;
 * ``compute_totals`` of thrust, torque, chord and twist with respect to every
@@ -124,15 +124,16 @@ def thrust_target(designs, polar, repeats):
     for v in VARIANTS:
         for i, (kw, chord) in enumerate(cases):
             thrusts[v, i] = design_rotor(ref_chord=chord, airfoil=polar, section_point=v[0], ideal_loading=v[1],
-                                         on_infeasible="skip", **kw).thrust
+                                         on_infeasible="skip", bem_analysis=False, **kw).thrust
         design_rotor(thrust=thrusts[v, 0], airfoil=polar, section_point=v[0], ideal_loading=v[1],
-                     on_infeasible="skip", **cases[0][0])
+                     on_infeasible="skip", bem_analysis=False, **cases[0][0])
     # design_rotor keeps four set-up models: the two of one variant stay cached within its block.
     for v in VARIANTS:
         for k in range(repeats):
             i = (k + 1) % len(cases)
             kw, chord = cases[i]
-            opts = dict(airfoil=polar, section_point=v[0], ideal_loading=v[1], on_infeasible="skip", **kw)
+            opts = dict(airfoil=polar, section_point=v[0], ideal_loading=v[1], on_infeasible="skip",
+                        bem_analysis=False, **kw)
             at_chord[v].append(clocks(lambda: design_rotor(ref_chord=chord, **opts)))
             result = []
             at_thrust[v].append(clocks(lambda: result.append(design_rotor(thrust=thrusts[v, i], **opts))))

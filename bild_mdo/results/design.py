@@ -36,6 +36,7 @@ from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.io.airfoil import resolve_airfoil
+from bild_mdo.results.design_analysis import analyze_designs
 from bild_mdo.results.design_result import (DISTRIBUTION_UNITS, DISTRIBUTIONS, INPUT_UNITS, NODE_OUTPUT_UNITS,
                                             ON_INFEASIBLE, OPTIONAL_OUTPUTS, DesignResult)
 
@@ -91,7 +92,8 @@ def _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius
 def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_radius_ratio=0.2,
                  ref_radius_ratio=0.5, ref_chord=None, altitude=0.0, num_blades=3, airfoil="naca4412",
                  num_radial=30, loss_model="tip_hub", chord_form="thrust", root_chord_correction=None,
-                 on_infeasible="raise", thrust=None, section_point="reference", ideal_loading="paper"):
+                 on_infeasible="raise", thrust=None, section_point="reference", ideal_loading="paper",
+                 bem_analysis=True):
     """Design the ideal rotor(s) for given operating points with the BILD method (paper Alg. 1).
 
     Scalars give one design; lists or 1-D arrays (broadcast against each
@@ -164,6 +166,14 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         chord is solved for it inside the BILD model
         (:class:`~bild_mdo.bild.BILDGroup` with ``thrust_target=True``); the
         result's ``ref_chord`` is the solved chord.
+    bem_analysis : bool
+        Also analyse every design's own blade with the BEM model and the same
+        polar at its operating point (default True; one vectorised run of a
+        cached problem, :mod:`bild_mdo.results.design_analysis`): the result's
+        ``bem_thrust``, ``bem_torque``, ``bem_power``, ``bem_efficiency`` and
+        ``bem_figure_of_merit``, shown by :meth:`DesignResult.summary` beside
+        the design's own numbers with the difference and why they can differ.
+        False leaves them out (a sizing loop that needs only the design).
 
     Returns
     -------
@@ -241,6 +251,10 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     ordered = {name: outputs[name] for name in DISTRIBUTIONS if name in outputs}
     ordered.update({name: values[name] for name in INPUT_UNITS})
     ordered.update({name: outputs[name] for name in NODE_OUTPUT_UNITS if name in outputs})
+    if bem_analysis:
+        analysis, invalid = analyze_designs(values, outputs, ~infeasible, num_blades, polar, loss_model)
+        ordered.update(analysis)
+        ordered["bem_invalid_stations"] = np.where(infeasible, np.nan, invalid.astype(float))
     result = DesignResult(values=ordered, num_blades=num_blades, airfoil=getattr(polar, "name", type(polar).__name__),
                           loss_model=loss_model, chord_form=chord_form,
                           root_chord_correction=root_chord_correction, polar=polar, is_batch=True,

@@ -19,6 +19,7 @@ from bild_mdo.io.csv import write_csv
 from bild_mdo.io.geometry import RotorGeometry, unit_key
 from bild_mdo.io.json import write_json
 from bild_mdo.results import tables
+from bild_mdo.results.design_analysis import ANALYSIS_UNITS
 
 #: Distributions of the BILD model copied into the result: name -> units.
 DISTRIBUTION_UNITS = {
@@ -100,6 +101,11 @@ class DesignResult:
         that the BILD model outputs (``tip_mach`` among them, once it does).
     ideal_loading_constant : float or ndarray
         lambda of Eq. (22) (m/s).
+    bem_thrust, bem_torque, bem_power, bem_efficiency, bem_figure_of_merit : float or ndarray
+        The BEM analysis of the design's own blade with the same polar at its operating point (each station
+        at its own Reynolds number; with ``design_rotor(..., bem_analysis=True)``, the default;
+        :mod:`~bild_mdo.results.design_analysis` says when and why they differ from the design's numbers);
+        ``bem_invalid_stations`` counts the stations the analysis finds outside the propeller state.
     alpha_star, cl_star, cd_star, reynolds_ref : float or ndarray
         Max-L/D point at the reference Reynolds number.
     rho, mu : float or ndarray
@@ -143,7 +149,7 @@ class DesignResult:
     ideal_loading: str = "paper"
 
     UNITS: ClassVar[dict] = {"radii": "m", "radial_fractions": None, **DISTRIBUTION_UNITS, **DERIVED_DISTRIBUTIONS,
-                             **INPUT_UNITS, **NODE_OUTPUT_UNITS}
+                             **INPUT_UNITS, **NODE_OUTPUT_UNITS, **ANALYSIS_UNITS, "bem_invalid_stations": None}
 
     def __getattr__(self, name):
         # Only called for names that are not fields: the quantities and their *_deg forms.

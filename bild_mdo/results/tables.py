@@ -7,9 +7,12 @@ and display scales of the performance metrics come from the registry
 :data:`~bild_mdo.bem.metrics.METRICS`.
 
 The efficiency and the figure of merit are printed only where they mean
-something, ``T > 0`` and ``P > 0`` (:data:`PROPULSIVE_ONLY`); elsewhere (a
-windmill, a brake, a rotor that absorbs no power) the cell reads "n/a",
-although the result objects keep the formulas' values.  Designs or points
+something (:data:`PROPULSIVE_ONLY`, :func:`meaningful`): both need ``T > 0``
+and ``P > 0`` (not a windmill, a brake or a rotor that absorbs no power), the
+efficiency ``V_x T / P`` forward flight (``V_x > 0``; it is 0 in hover) and
+the figure of merit hover (``V_x = 0``; in climb or cruise it compares the
+rotor with a hovering actuator disk it is not).  Elsewhere the cell reads
+"n/a", although the result objects keep the formulas' values.  Designs or points
 that are infeasible or failed (``result.feasible`` / ``result.status``) print
 their reason instead of numbers.
 """
@@ -18,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo.bem.metrics import METRICS_BY_NAME
+from bild_mdo.results.design_analysis import analysis_reason
 
 #: Operating-point and sizing columns: name -> title (SI units; rpm in rpm).
 INPUT_TITLES = {"advance_ratio": "J [-]", "v_axial": "V [m/s]", "rpm": "rpm", "radius": "R [m]",
@@ -36,7 +40,7 @@ SWEEP_COLUMNS = {"advance_ratio": ".4f", "v_axial": ".3f", "rpm": ".1f", "collec
                  "power": ".5g", "efficiency": ".4f", "figure_of_merit": ".4f", "thrust_coefficient": ".5f",
                  "torque_coefficient": ".6f", "power_coefficient": ".5f"}
 
-#: Metrics printed only where T > 0 and P > 0 (else "n/a").
+#: Metrics printed only where they mean something (:func:`meaningful`; else "n/a").
 PROPULSIVE_ONLY = ("efficiency", "figure_of_merit")
 
 
@@ -45,10 +49,26 @@ def propulsive(result):
     return (np.asarray(result.thrust) > 0.0) & (np.asarray(result.power) > 0.0)
 
 
+def meaningful(result):
+    """Where each metric of :data:`PROPULSIVE_ONLY` means something, per design or point: the efficiency in
+    forward flight (``V_x > 0``), the figure of merit in hover (``V_x = 0``), both only with T > 0 and P > 0."""
+    both = propulsive(result)
+    hover = np.asarray(result.v_axial) == 0.0
+    return {"efficiency": both & ~hover, "figure_of_merit": both & hover}
+
+
+def not_meaningful_reason(result, name):
+    """Why a metric of :data:`PROPULSIVE_ONLY` of one design or point is "n/a" (its table note)."""
+    if not bool(propulsive(result)):
+        return "needs T > 0 and P > 0"
+    return "hover: see FM" if name == "efficiency" else "not in hover: see eta"
+
+
 def metric_cell(result, name, index, scale=1.0, fmt=None, width=11, useful=None):
-    """A table cell of quantity ``name`` at ``index``: "n/a" for eta and FM unless T > 0 and P > 0."""
+    """A table cell of quantity ``name`` at ``index``: "n/a" for eta and FM where they mean nothing
+    (``useful``: :func:`meaningful` of the result, computed here if not given)."""
     if name in PROPULSIVE_ONLY:
-        ok = propulsive(result) if useful is None else useful
+        ok = (meaningful(result) if useful is None else useful)[name]
         if not np.ndim(ok) == 0:
             ok = ok[index]
         if not ok:
@@ -131,7 +151,7 @@ def design_batch_table(result, max_rows):
     """One row per design of a batch (the middle elided beyond ``max_rows``); infeasible rows say so."""
     columns = [(name, *column(name)) for name in DESIGN_BATCH_COLUMNS]
     lines = [f"{len(result)} designs", f"{'#':>6} " + " ".join(f"{title:>11}" for _, title, _ in columns)]
-    useful, status = propulsive(result), _statuses(result)
+    useful, status = meaningful(result), _statuses(result)
     for i in shown_rows(len(result), max_rows):
         if i is None:
             lines.append(f"{'...':>6}")
@@ -147,7 +167,7 @@ def single_design_table(design):
     (:func:`design_notes`)."""
     status = getattr(design, "status", "ok")
     lines = [] if status == "ok" else [f"INFEASIBLE (values NaN): {status}"]
-    useful = bool(propulsive(design))
+    useful = {name: bool(mask) for name, mask in meaningful(design).items()}
     local = getattr(design, "section_point", "reference") == "local"
     for label, quantity, units in _SINGLE_DESIGN_ROWS:
         if quantity is None:
@@ -156,13 +176,35 @@ def single_design_table(design):
             cl_star, cd_star = (getattr(design, name) for name in quantity)
             text = f"{_number(cl_star, '.4f')}, {_number(cd_star, '.5f')}"
             lines.append(f"  {label:<32s} {text:>14s} {units}" + _per_station(cl_star, local))
-        elif quantity in PROPULSIVE_ONLY and not useful:
-            lines.append(f"  {label:<32s} {'n/a':>14s} {units}  (needs T > 0 and P > 0)")
+        elif quantity in PROPULSIVE_ONLY and not useful[quantity]:
+            lines.append(f"  {label:<32s} {'n/a':>14s} {units}  ({not_meaningful_reason(design, quantity)})")
         elif hasattr(design, quantity):  # tip_mach only where the model outputs it
             scale = METRICS_BY_NAME[quantity].display_scale if units == "kW" else 1.0
             value = np.asarray(getattr(design, quantity)) * scale
             lines.append(f"  {label:<32s} {_number(value, '.6g'):>14s} {units}" + _per_station(value, local))
-    return lines + design_notes(design)
+    return lines + analysis_rows(design, useful) + design_notes(design)
+
+
+def analysis_rows(design, useful):
+    """The BEM analysis of one design's own blade beside the design's numbers, and why they can differ
+    (empty without an analysis; :mod:`~bild_mdo.results.design_analysis`)."""
+    if "bem_thrust" not in design.values or getattr(design, "status", "ok") != "ok":
+        return []
+    lines = ["BEM analysis of this blade (same polar and operating point; each station at its own Re):"]
+    rows = [("thrust T", "thrust", "N", 1.0), ("power P", "power", "kW", 1e-3)]
+    rows += [(label, name, "-", 1.0) for label, name in (("efficiency eta", "efficiency"),
+                                                         ("figure of merit FM", "figure_of_merit"))
+             if useful[name]]
+    for label, name, units, scale in rows:
+        analysed, designed = float(design.values["bem_" + name]), float(design.values[name])
+        lines.append(f"  {label:<32s} {analysed * scale:>14.6g} {units}  "
+                     f"({round(100.0 * (analysed / designed - 1.0), 4) + 0.0:+.4f} % against the design's {designed * scale:.6g})")
+    lines.append(f"  {analysis_reason(design)}")
+    invalid = int(design.values.get("bem_invalid_stations", 0))
+    if invalid:
+        lines.append(f"  {invalid} station(s) outside the propeller flow state in the analysis "
+                     "(bild_mdo.bem.flow_states)")
+    return lines
 
 
 def _method(design):
@@ -246,7 +288,7 @@ def sweep_table(result):
     columns = [(name, *column(name), fmt) for name, fmt in SWEEP_COLUMNS.items()
                if pitched or name != "collective_pitch_deg"]
     lines = [" ".join(f"{title:>10}" for _, title, _, _ in columns)]
-    useful, status = propulsive(result), _statuses(result)
+    useful, status = meaningful(result), _statuses(result)
     for i in range(len(result)):
         cells = [metric_cell(result, name, i, scale, fmt, width=10, useful=useful)
                  for name, _, scale, fmt in columns if name in POINT_TITLES or status[i] == "ok"]

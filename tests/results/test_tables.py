@@ -53,8 +53,23 @@ def test_efficiency_and_figure_of_merit_only_where_thrust_and_power_are_positive
     rows = _Rows()
     assert rows.efficiency[1] == pytest.approx(1.46, abs=0.01)
     propeller, windmill = tables.sweep_table(rows)[1:]
-    assert "0.8803" in propeller and "0.2188" in propeller and "n/a" not in propeller
+    # Forward flight: eta = V T / P = 40 * 1711.9 / 77790 = 0.8803; the hover figure of merit means nothing there.
+    assert propeller.split()[6:8] == ["0.8803", "n/a"] and "0.2188" not in propeller
     assert windmill.split()[6:8] == ["n/a", "n/a"] and "1.46" not in windmill
+
+
+def test_figure_of_merit_only_in_hover_and_efficiency_only_in_forward_flight():
+    # FM = T^1.5 / (P sqrt(2 rho A)) compares with the ideal HOVER power; eta = V T / P is 0 at V = 0 (Table 2).
+    rows = _Rows()
+    rows.v_axial = np.array([0.0, 40.0])
+    rows.power = np.array([77790.0, 77790.0])
+    rows.thrust = np.array([1711.9, 1711.9])
+    useful = tables.meaningful(rows)
+    assert useful["figure_of_merit"].tolist() == [True, False]
+    assert useful["efficiency"].tolist() == [False, True]
+    hover, cruise = tables.sweep_table(rows)[1:]
+    assert hover.split()[6:8] == ["n/a", "0.2188"]
+    assert cruise.split()[7] == "n/a"
 
 
 def test_failed_point_prints_its_reason():
