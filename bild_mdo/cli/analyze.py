@@ -11,12 +11,12 @@ from bild_mdo.plots.curves import plot_performance_curves
 from bild_mdo.results.off_design import off_design_sweep
 
 #: One-line help of the subcommand.
-HELP = "BEM off-design analysis of a blade geometry file over J, rpm or collective pitch"
+HELP = "BEM off-design analysis of a blade geometry file over J, airspeed, rpm or collective pitch"
 #: Description of the subcommand.
 DESCRIPTION = (
     "Analyse a fixed blade (a CSV, JSON or QPROP file as written by 'bild-mdo design', or any QPROP propeller "
-    "file) with BEM over a range of advance ratios J = V/(nD) [-] at fixed rpm, of rotor speeds [rpm] at fixed "
-    "axial velocity [m/s], or of collective pitches [deg] (alone: at the design point; with a J or rpm sweep: "
+    "file) with BEM over a range of advance ratios J = V/(nD) [-] or of airspeeds [m/s] at fixed rpm, of rotor "
+    "speeds [rpm] at fixed axial velocity [m/s], or of collective pitches [deg] (alone: at the design point; with a J or rpm sweep: "
     "every pitch at every point), in one vectorised run.  Prints T [N], Q [N m], P [kW], eta, FM, C_T, C_Q, C_P "
     "and the maximum-efficiency point.")
 
@@ -34,9 +34,12 @@ def add_analyze_arguments(parser):
                              "pitch sweep at the design point; with --advance-ratio or --rpm, every pitch at every "
                              "point (one value: START STOP 1)")
     parser.add_argument("--at-rpm", type=float, default=None, metavar="RPM",
-                        help="rotor speed [rpm] of a J sweep (default: the design rpm stored in the file)")
-    parser.add_argument("--v-axial", type=float, default=None, metavar="V",
-                        help="axial velocity [m/s] of an rpm sweep (default: the file's design value, else 0)")
+                        help="rotor speed [rpm] of a J or airspeed sweep (default: the design rpm stored in the "
+                             "file)")
+    parser.add_argument("--v-axial", type=float, nargs="+", default=None, metavar="V",
+                        help="one value: the axial velocity [m/s] of an rpm or pitch sweep (default: the file's "
+                             "design value, else 0); three values START STOP N: sweep the airspeed [m/s] from "
+                             "START to STOP in N points, at --at-rpm")
     parser.add_argument("--altitude", type=float, default=None, metavar="H",
                         help="ISA altitude [m] (default: the file's design altitude, else 0)")
     parser.add_argument("--airfoil", default=None, metavar="AIRFOIL",
@@ -62,6 +65,8 @@ def _sweep_points(option, triple):
             validation.positive(f"--rpm {label}", value, units="rpm")
         elif option == "--advance-ratio":
             validation.non_negative(f"--advance-ratio {label}", value)
+        elif option == "--v-axial":
+            validation.non_negative(f"--v-axial {label}", value, units="m/s")
         else:
             validation.real_array(f"{option} {label}", value, units="deg", ndim=(0,))
     return np.linspace(start, stop, count)
@@ -77,17 +82,28 @@ def run_analyze(args, out):
     """
     # Argument errors first: they need no file and leave none behind.
     pitch = None if args.collective_pitch is None else _sweep_points("--collective-pitch", args.collective_pitch)
-    if args.advance_ratio is None and args.rpm is None and pitch is None:
-        raise ValueError("give the sweep: --advance-ratio START STOP N, --rpm START STOP N or "
-                         "--collective-pitch START STOP N")
-    option = "--advance-ratio" if args.advance_ratio is not None else "--rpm"
-    sweep = args.advance_ratio if args.advance_ratio is not None else args.rpm
+    v_axial = args.v_axial
+    if v_axial is not None and len(v_axial) not in (1, 3):
+        raise ValueError(f"--v-axial takes one value V [m/s] or three START STOP N (an airspeed sweep), got "
+                         f"{len(v_axial)}")
+    airspeeds = v_axial if v_axial is not None and len(v_axial) == 3 else None
+    v_axial = v_axial[0] if v_axial is not None and len(v_axial) == 1 else None
+    if airspeeds is not None and (args.advance_ratio is not None or args.rpm is not None):
+        raise ValueError("--v-axial START STOP N sweeps the airspeed: give it without --advance-ratio and --rpm")
+    if args.advance_ratio is not None and v_axial is not None:
+        raise ValueError("--advance-ratio fixes the airspeed by J and rpm (V = J n D): leave out --v-axial, or "
+                         "sweep the airspeed with --v-axial START STOP N")
+    if args.advance_ratio is None and args.rpm is None and airspeeds is None and pitch is None:
+        raise ValueError("give the sweep: --advance-ratio START STOP N, --v-axial START STOP N, --rpm START STOP N "
+                         "or --collective-pitch START STOP N")
+    option, sweep = next(((name, value) for name, value in (("--advance-ratio", args.advance_ratio),
+                                                             ("--v-axial", airspeeds), ("--rpm", args.rpm))
+                          if value is not None), ("--rpm", None))
     points = _sweep_points(option, sweep) if sweep is not None else np.zeros(1)
     if pitch is not None:
         validation.memory_bound("--collective-pitch N times the sweep's N", pitch.size * points.size, 2,
                                 hint="use fewer points", at_least=True)
-    for name in ("at_rpm", "v_axial", "altitude"):
-        value = getattr(args, name)
+    for name, value in (("at_rpm", args.at_rpm), ("v_axial", v_axial), ("altitude", args.altitude)):
         if value is not None:
             validation.real_array("--" + name.replace("_", "-"), value, ndim=(0,))
     csv_file = output_file("--csv", args.csv)
@@ -101,10 +117,12 @@ def run_analyze(args, out):
         kwargs["collective_pitch"] = np.radians(pitch)
     if args.advance_ratio is not None:
         result = off_design_sweep(geometry, advance_ratios=points, rpm=args.at_rpm, **kwargs)
+    elif airspeeds is not None:
+        result = off_design_sweep(geometry, v_axial=points, rpm=args.at_rpm, **kwargs)
     elif args.rpm is not None:
-        result = off_design_sweep(geometry, rpms=points, v_axial=args.v_axial, **kwargs)
+        result = off_design_sweep(geometry, rpms=points, v_axial=v_axial, **kwargs)
     else:
-        result = off_design_sweep(geometry, rpm=args.at_rpm, v_axial=args.v_axial, **kwargs)
+        result = off_design_sweep(geometry, rpm=args.at_rpm, v_axial=v_axial, **kwargs)
     print(f"geometry: {args.geometry}: {geometry.num_radial} stations, B = {geometry.num_blades}, "
           f"R = {geometry.radius:.6g} m, hub radius {geometry.hub_radius:.6g} m, "
           f"airfoil {args.airfoil or geometry.airfoil or 'from the QPROP CL/CD lines'}", file=out)

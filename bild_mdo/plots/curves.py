@@ -34,6 +34,8 @@ def plot_performance_curves(off_design_result, path=None):
     res = off_design_result
     if res.sweep == "advance_ratio":
         x, xlabel = res.advance_ratio, "advance ratio J = V/(nD) [-]"
+    elif res.sweep == "v_axial":
+        x, xlabel = res.v_axial, "airspeed V [m/s]"
     else:
         x, xlabel = res.rpm, "rotor speed [rpm]"
     fig = new_figure(path, figsize=(9.0, 6.6))
@@ -90,7 +92,7 @@ def plot_performance_curves(off_design_result, path=None):
     geom = res.geometry
     fig.suptitle(f"Off-design BEM analysis: B = {geom.num_blades}, R = {geom.radius:.3g} m, "
                  f"altitude {res.altitude:.4g} m"
-                 + (f", {res.rpm[0]:.4g} rpm" if res.sweep == "advance_ratio" else
+                 + (f", {res.rpm[0]:.4g} rpm" if res.sweep in ("advance_ratio", "v_axial") else
                     f", V = {res.v_axial[0]:.3g} m/s"))
     return finish(fig, path)
 
@@ -101,6 +103,9 @@ def _design_index(res):
     if res.sweep == "advance_ratio" and res.design_advance_ratio is not None:
         hits = np.flatnonzero(np.isclose(res.advance_ratio, res.design_advance_ratio, rtol=1e-9, atol=1e-12)
                               & np.isclose(res.rpm, point.get("rpm", np.nan), rtol=1e-9))
+    elif res.sweep == "v_axial" and "rpm" in point:
+        hits = np.flatnonzero(np.isclose(res.v_axial, point.get("v_axial", np.nan), rtol=1e-9, atol=1e-12)
+                              & np.isclose(res.rpm, point["rpm"], rtol=1e-9))
     elif res.sweep == "rpm" and "rpm" in point:
         hits = np.flatnonzero(np.isclose(res.rpm, point["rpm"], rtol=1e-9)
                               & np.isclose(res.v_axial, point.get("v_axial", np.nan), rtol=1e-9, atol=1e-12))

@@ -1,4 +1,4 @@
-"""Off-design performance of a fixed rotor geometry: a vectorised BEM sweep over J, rpm or collective pitch.
+"""Off-design performance of a fixed rotor geometry: a vectorised BEM sweep over J, airspeed, rpm or collective pitch.
 
 :func:`off_design_sweep` analyses one blade (a BILD design, a geometry file or
 arrays) at many operating points in ONE call of
@@ -61,8 +61,8 @@ class OffDesignResult:
     Attributes
     ----------
     sweep : str
-        ``'advance_ratio'``, ``'rpm'`` or ``'collective_pitch'``: the swept variable
-        (a J or rpm sweep at several pitches repeats it for each pitch).
+        ``'advance_ratio'``, ``'v_axial'`` (airspeed), ``'rpm'`` or ``'collective_pitch'``: the swept
+        variable (a J, airspeed or rpm sweep at several pitches repeats it for each pitch).
     advance_ratio, v_axial, rpm : ndarray
         Operating points: J = V/(nD) (-), axial velocity (m/s), rotor speed (rpm).
     collective_pitch : ndarray
@@ -243,7 +243,7 @@ def _sweep_points(name, values, check, units):
 
 def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm=None, altitude=None,
                      polar=None, loss_model=None, design=None, on_invalid="warn", collective_pitch=0.0):
-    """BEM analysis of one fixed blade over a range of advance ratios, rotor speeds or collective pitches.
+    """BEM analysis of one fixed blade over a range of advance ratios, airspeeds, rotor speeds or collective pitches.
 
     All points run in one vectorised analysis.  A point whose analysis fails
     (no torque at all, or, with ``on_invalid='raise'``, stations outside the
@@ -262,10 +262,14 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
         Sweep J = V/(nD) (-, >= 0) at rotor speed ``rpm``.
     rpms : array_like, optional
         Sweep the rotor speed (rpm, > 0) at axial velocity ``v_axial``.
-        Give at most one of ``advance_ratios`` and ``rpms``; with neither,
-        ``collective_pitch`` must be a list (a pitch sweep at the design point).
-    v_axial : float, optional
-        Axial velocity (m/s) of an rpm or pitch sweep; default the design's, else 0.
+        Give at most one of ``advance_ratios``, ``rpms`` and a list of
+        ``v_axial``; with none, ``collective_pitch`` must be a list (a pitch
+        sweep at the design point).
+    v_axial : float or array_like, optional
+        A number: the axial velocity (m/s) of an rpm or pitch sweep; default
+        the design's, else 0.  A list: sweep the airspeed (m/s, >= 0) at rotor
+        speed ``rpm`` (``result.sweep == 'v_axial'``).  An advance-ratio sweep
+        fixes the airspeed by J and rpm, so it takes no ``v_axial``.
     rpm : float, optional
         Rotor speed (rpm) of an advance-ratio or pitch sweep; default the design's.
     altitude : float, optional
@@ -300,11 +304,16 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     pitches = np.atleast_1d(validation.real_array("collective_pitch", collective_pitch, units="rad",
                                                   axes=("pitch",)))
     pitch_sweep = np.ndim(collective_pitch) == 1
-    if advance_ratios is not None and rpms is not None:
-        raise ValueError("give at most one of advance_ratios (J sweep) and rpms (rotor-speed sweep)")
-    if advance_ratios is None and rpms is None and not pitch_sweep:
-        raise ValueError("give advance_ratios (J sweep), rpms (rotor-speed sweep) or a list of collective_pitch "
-                         "values (pitch sweep)")
+    airspeed_sweep = v_axial is not None and np.ndim(v_axial) == 1
+    if sum((advance_ratios is not None, rpms is not None, airspeed_sweep)) > 1:
+        raise ValueError("give at most one of advance_ratios (J sweep), rpms (rotor-speed sweep) and a list of "
+                         "v_axial (airspeed sweep)")
+    if advance_ratios is not None and v_axial is not None:
+        raise ValueError("an advance-ratio sweep fixes the airspeed by J and rpm (V = J n D): leave v_axial out, "
+                         "or sweep the airspeed with v_axial=[...] instead of advance_ratios")
+    if advance_ratios is None and rpms is None and not airspeed_sweep and not pitch_sweep:
+        raise ValueError("give advance_ratios (J sweep), rpms (rotor-speed sweep), a list of v_axial (airspeed "
+                         "sweep) or a list of collective_pitch values (pitch sweep)")
     if pitches.size == 0:
         raise ValueError("collective_pitch must be a number or a non-empty 1-D list of values in rad")
     validation.choice("on_invalid", on_invalid, ON_INVALID)
@@ -319,19 +328,23 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     if rpms is None:
         j = (_sweep_points("advance_ratios", advance_ratios, validation.non_negative, None)
              if advance_ratios is not None else None)
+        airspeeds = _sweep_points("v_axial", v_axial, validation.non_negative, "m/s") if airspeed_sweep else None
         if rpm is None:
             if "rpm" not in point:
                 raise ValueError("the geometry has no design rpm; give the rotor speed of the sweep (rpm=..., "
                                  "bild-mdo analyze --at-rpm)")
             rpm = point["rpm"]
         rpm = float(validation.positive("rpm", rpm, units="rpm", ndim=(0,)))
+        if airspeeds is not None:
+            j = airspeeds / (rpm * revs_per_diameter)
         if j is None:  # a pitch sweep at the design point: its J, or its axial velocity
             v = point.get("v_axial", 0.0) if v_axial is None else v_axial
             v = float(validation.non_negative("v_axial", v, units="m/s", ndim=(0,)))
             j = np.array([v / (rpm * revs_per_diameter)])
         speeds = np.full(j.shape, rpm)
-        velocities = j * speeds * revs_per_diameter
-        sweep = "advance_ratio" if advance_ratios is not None else "collective_pitch"
+        velocities = airspeeds if airspeeds is not None else j * speeds * revs_per_diameter
+        sweep = ("advance_ratio" if advance_ratios is not None else "v_axial" if airspeeds is not None
+                 else "collective_pitch")
     else:
         speeds = _sweep_points("rpms", rpms, validation.positive, "rpm")
         v = point.get("v_axial", 0.0) if v_axial is None else v_axial

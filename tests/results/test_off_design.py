@@ -104,7 +104,8 @@ def test_geometry_sources_agree(tmp_path):
 
 
 @pytest.mark.parametrize("kwargs, message", [
-    (dict(), "give advance_ratios .J sweep., rpms .rotor-speed sweep. or a list of collective_pitch"),
+    (dict(), "give advance_ratios .J sweep., rpms .rotor-speed sweep., a list of v_axial .airspeed sweep. or a "
+             "list of collective_pitch"),
     (dict(advance_ratios=[1.0], rpms=[800.0]), "at most one"),
     (dict(advance_ratios=[0.5], collective_pitch=[]), "collective_pitch must be a number or a non-empty"),
     (dict(advance_ratios=[0.5], collective_pitch="0.1"), "collective_pitch must be a finite number in rad"),
