@@ -17,6 +17,10 @@ resolved by :func:`resolve_airfoil`: anything
 here, a polar frozen at one Reynolds number (``naca4412@re=1e6``) and a
 spanwise set of airfoils at radial fractions r/R, written
 ``0.2:naca4415;1:naca4412`` (or with commas, ``0.2:naca4415,1:naca4412``).
+Before any of that, the files the text names are checked: a path that does
+not exist is one line ``airfoil file or folder not found: PATH``, and a file
+that is not text (a NUL or other control byte, or mostly bytes that are not
+UTF-8) is one line saying so, instead of a parse error quoting its bytes.
 """
 from __future__ import annotations
 
@@ -29,9 +33,10 @@ from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.airfoil.serialize import polar_from_dict, polar_to_dict
 from bild_mdo.airfoil.text import sweep_polar
+from bild_mdo.io.geometry import not_text, read_text
 
-__all__ = ["POLAR_FILE_FORMAT", "airfoil_text", "polar_description", "polar_file_for", "read_polar_file",
-           "resolve_airfoil", "write_polar_file"]
+__all__ = ["POLAR_FILE_FORMAT", "airfoil_text", "check_airfoil_file", "polar_description", "polar_file_for",
+           "read_polar_file", "resolve_airfoil", "write_polar_file"]
 
 #: ``"format"`` of a polar file.
 POLAR_FILE_FORMAT = "bild-mdo airfoil polar"
@@ -41,6 +46,15 @@ POLAR_FILE_SUFFIX = ".polar.json"
 
 # r/R:AIRFOIL, as one station of a spanwise set.
 _STATION = re.compile(r"^\s*[0-9.eE+-]+\s*:\s*\S")
+_STATION_PREFIX = re.compile(r"^\s*[0-9.eE+-]+\s*:")
+_NEURALFOIL_PREFIX = re.compile(r"^\s*neuralfoil\s*:", re.IGNORECASE)
+_FIXED_RE_SUFFIX = re.compile(r"@\s*re\s*=.*$", re.IGNORECASE)
+# Text that can only be a path: a folder separator, or the suffix of a polar, coordinates or polar-JSON file.
+_PATH_LIKE = re.compile(r"[/\\]|\.(txt|dat|csv|pol|polar|json)$", re.IGNORECASE)
+# Bytes of a file that is checked for text (a polar or coordinates file is far smaller).
+_TEXT_CHECK_BYTES = 1 << 16
+# Control characters that no text file holds (tab, line feed, carriage return, form feed and vertical tab may).
+_CONTROL = re.compile(rb"[\x00-\x08\x0e-\x1f\x7f]")
 
 
 def resolve_airfoil(airfoil):
@@ -56,9 +70,57 @@ def resolve_airfoil(airfoil):
     text = str(airfoil).strip() if isinstance(airfoil, (str, Path)) else airfoil
     if not isinstance(text, str):
         return resolve_polar(airfoil)
+    for name in _named_paths(airfoil_text(text)):
+        check_airfoil_file(name)
     if text.lower().endswith(".json") and Path(text).expanduser().is_file():
         return read_polar_file(Path(text).expanduser())
     return sweep_polar(airfoil_text(text))
+
+
+def _named_paths(text):
+    """The names in airfoil text that may be files: each member of a spanwise set, each of a list of files."""
+    for member in text.split(";"):
+        member = _FIXED_RE_SUFFIX.sub("", _NEURALFOIL_PREFIX.sub("", _STATION_PREFIX.sub("", member)))
+        for name in member.split(","):
+            if name.strip():
+                yield name.strip()
+
+
+def check_airfoil_file(name):
+    """Check a name in airfoil text that is a file: it exists if it looks like a path, and it is text.
+
+    Raises
+    ------
+    ValueError
+        ``airfoil file or folder not found: NAME`` for a path (a name with a
+        folder separator or a polar-file suffix) that does not exist;
+        ``NAME: not a text polar file (...)`` for a file that holds binary
+        data (a NUL or other control byte, or more than 16 and more than 10 %
+        of its bytes not UTF-8, in its first 64 KiB).  Text in another 8-bit
+        encoding with a few accented letters is still text (as the polar
+        readers take it).
+    """
+    path = Path(name).expanduser()
+    if not path.exists():
+        if _PATH_LIKE.search(name):
+            raise ValueError(f"airfoil file or folder not found: {name}")
+        return
+    if not path.is_file():
+        return
+    try:
+        with path.open("rb") as handle:
+            data = handle.read(_TEXT_CHECK_BYTES)
+    except OSError as err:
+        raise ValueError(f"{path}: cannot read the polar file ({err.strerror or type(err).__name__})") from None
+    # ASCII control bytes never occur inside a UTF-8 multi-byte character: search the bytes themselves.
+    control = _CONTROL.search(data)
+    if control:
+        raise ValueError(not_text(path, "polar", f"a control byte 0x{control.group()[0]:02x} at byte "
+                                                 f"{control.start()}", data))
+    # A multi-byte character cut at the end of the block is not binary.
+    bad = data.decode("utf-8", errors="replace")[:-1].count("\ufffd")
+    if bad > max(16, 0.1 * len(data)):
+        raise ValueError(not_text(path, "polar", f"{bad} of its first {len(data)} bytes are not UTF-8 text", data))
 
 
 def airfoil_text(text):
@@ -132,9 +194,7 @@ def read_polar_file(path):
     if not path.is_file():
         raise ValueError(f"polar file {path} not found (it goes with the geometry file: copy both)")
     try:
-        doc = json.loads(path.read_text(encoding="utf-8"))
-    except UnicodeDecodeError:
-        raise ValueError(f"{path}: not a UTF-8 text file") from None
+        doc = json.loads(read_text(path, "polar"))
     except json.JSONDecodeError as err:
         raise ValueError(f"{path}:{err.lineno}: not valid JSON ({err.msg}, column {err.colno})") from None
     if not isinstance(doc, dict) or doc.get("format") != POLAR_FILE_FORMAT or not isinstance(doc.get("airfoil"),

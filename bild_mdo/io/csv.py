@@ -3,7 +3,7 @@
 Comment lines ``# key [unit]: value`` hold the metadata, then one header row and
 one row per station::
 
-    # bild-mdo rotor geometry, format 1
+    # bild-mdo rotor geometry, format 2
     # name: bild-mdo design (naca4412, B=3)
     # airfoil: naca4412
     # num_blades: 3
@@ -14,14 +14,24 @@ one row per station::
     # design_point.v_axial [m/s]: 0
     # design_point.rpm [rpm]: 800
     ...
-    r [m],chord [m],twist [deg]
-    0.32,0.1359434876,25.930843669
+    r [m],chord [m],twist [deg],dr [m]
+    0.32,0.1359434876,25.930843669,0.04
     ...
+
+``dr`` is the width of the annulus each station stands for (the cells
+between the midpoints of neighbouring stations, bounded by hub and tip, that
+the BEM analysis integrates over); the widths tile hub to tip, so a file
+that lost rows is refused (:func:`~bild_mdo.io.geometry.check_stations`).
+The first line gives the format version: a newer file than this reader
+reads is refused; a format-1 file (no ``dr`` column) or a hand-made table
+has its end stations checked instead (the gap to hub and tip at most one
+station spacing, :func:`~bild_mdo.io.geometry.check_end_gaps`).
 
 The ``polar_file`` line is written for a polar that its name does not
 rebuild (tables, a spanwise set): the polar file next to the CSV
 (:mod:`bild_mdo.io.airfoil`) holds it, and the reader loads it from there.
-On reading, the header may give lengths in m, cm, mm or in and the twist in
+On reading, the file may start with a UTF-8 byte-order mark (as spreadsheets
+save it), the header may give lengths in m, cm, mm or in and the twist in
 deg or rad; a file without ``radius``/``hub_radius`` lines gets them by
 extending the first and last station half a spacing outwards (exact for
 stations at the midpoints of equal annuli).
@@ -29,6 +39,7 @@ stations at the midpoints of equal annuli).
 from __future__ import annotations
 
 import csv
+import re
 from pathlib import Path
 
 import numpy as np
@@ -36,7 +47,13 @@ import numpy as np
 from bild_mdo.io.airfoil import (needs_polar_file, polar_description, polar_file_for, read_polar_file,
                                  write_polar_file)
 from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, FileMetadata,
-                                  as_geometry, design_point_key, file_errors, format_number, split_key)
+                                  as_geometry, check_stations, check_version, design_point_key, file_errors,
+                                  format_number, read_text, split_key, twist_to_radians)
+
+# The first line: '# bild-mdo rotor geometry, format 2'.
+_FORMAT_LINE = re.compile(r"^#\s*" + re.escape(FORMAT_NAME) + r"\s*,\s*format\s+(?P<version>\S+)\s*$")
+#: What to do with a file without widths whose end stations are far from hub or tip.
+_FIX = "write the file again from the design (bild-mdo design --csv), or give each station's width in a 'dr [m]' column"
 
 
 def write_csv(path, geometry):
@@ -65,21 +82,22 @@ def write_csv(path, geometry):
         lines.append(f"# polar_file: {write_polar_file(polar_file_for(path), description).name}")
     lines += [f"# design_point.{design_point_key(key)}: {format_number(value)}"
               for key, value in geometry.design_point.items()]
-    lines.append("r [m],chord [m],twist [deg]")
-    lines += [f"{format_number(r)},{format_number(c)},{format_number(t)}"
-              for r, c, t in zip(geometry.radii, geometry.chord, geometry.twist_deg)]
+    lines.append("r [m],chord [m],twist [deg],dr [m]")
+    lines += [f"{format_number(r)},{format_number(c)},{format_number(t)},{format_number(w)}"
+              for r, c, t, w in zip(geometry.radii, geometry.chord, geometry.twist_deg, geometry.dr)]
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     return path
 
 
 def _column_scale(header):
+    """Column of each quantity in a header row: name -> (column, units, key text)."""
     names = {}
     for column, text in enumerate(header):
         key, units = split_key(text)
         table = ANGLE_UNITS if key in ("twist", "beta") else LENGTH_UNITS
         if units not in table:
             raise ValueError(f"column {text!r}: unknown units {units!r}; use one of {', '.join(table)}")
-        names["twist" if key == "beta" else key] = (column, table[units])
+        names["twist" if key == "beta" else key] = (column, units, text.strip())
     missing = {"r", "chord", "twist"} - set(names)
     if missing:
         raise ValueError(f"CSV header lacks column(s) {sorted(missing)}; expected 'r [m],chord [m],twist [deg]'")
@@ -115,10 +133,11 @@ def read_csv(path, load_polar=True):
     """
     path = Path(path)
     meta, rows, header = FileMetadata(path), [], None
-    with file_errors(path), path.open(encoding="utf-8", newline="") as handle:
-        for line_no, line in enumerate(handle, start=1):
-            with file_errors(path, line_no):
-                header = _read_line(line, line_no, meta, rows, header)
+    with file_errors(path):
+        lines = read_text(path).splitlines()
+    for line_no, line in enumerate(lines, start=1):
+        with file_errors(path, line_no):
+            header = _read_line(line, line_no, meta, rows, header)
     if header is None or not rows:
         raise ValueError(f"{path}: no geometry table found (need a header 'r [m],chord [m],twist [deg]' and rows)")
     if "num_blades" not in meta:
@@ -128,11 +147,15 @@ def read_csv(path, load_polar=True):
         polar = read_polar_file(path.parent / meta.text("polar_file"))
     with file_errors(path):
         data = np.array(rows)
-        radii = data[:, 0]
+        radii = data[:, 0] * LENGTH_UNITS[header["r"][1]]
+        chord = data[:, 1] * LENGTH_UNITS[header["chord"][1]]
+        twist = twist_to_radians(path, header["twist"][2], data[:, 2], header["twist"][1])
+        dr = data[:, 3] * LENGTH_UNITS[header["dr"][1]] if "dr" in header else None
         hub, tip = _extend_ends(radii) if radii.size > 1 else (0.0, radii[-1])
-        return meta.geometry(radii, data[:, 1], data[:, 2], radius=meta.length("radius", tip),
-                             hub_radius=meta.length("hub_radius", hub), num_blades=meta.integer("num_blades"),
-                             name=meta.text("name", path.stem), polar=polar)
+        geometry = meta.geometry(radii, chord, twist, radius=meta.length("radius", tip),
+                                 hub_radius=meta.length("hub_radius", hub), num_blades=meta.integer("num_blades"),
+                                 name=meta.text("name", path.stem), polar=polar)
+        return check_stations(path, geometry, dr, fix=_FIX)
 
 
 def _read_line(line, line_no, meta, rows, header):
@@ -141,6 +164,12 @@ def _read_line(line, line_no, meta, rows, header):
     if not text:
         return header
     if text.startswith("#"):
+        version = _FORMAT_LINE.match(text)
+        if version:
+            # At once: a newer file may have columns this reader does not know.
+            meta.add("format", version["version"])
+            check_version(meta.path, _number(version["version"]))
+            return header
         key_text, colon, value = text.lstrip("#").strip().partition(":")
         try:
             split_key(key_text)
@@ -153,7 +182,15 @@ def _read_line(line, line_no, meta, rows, header):
     if header is None:
         return _column_scale(cells)
     try:
-        rows.append([float(cells[header[k][0]]) * header[k][1] for k in ("r", "chord", "twist")])
+        rows.append([float(cells[header[k][0]]) for k in ("r", "chord", "twist", "dr") if k in header])
     except (ValueError, IndexError):
         raise ValueError(f"expected numbers in every column, got {text!r}") from None
     return header
+
+
+def _number(text):
+    """``float(text)``, or the text itself when it is not a number (for the message)."""
+    try:
+        return float(text)
+    except ValueError:
+        return text

@@ -1,9 +1,10 @@
 """Blade geometries as JSON (``.json``): one file, one or more designs.
 
-One object with ``"format": "bild-mdo rotor geometry"``, ``"version": 1`` and a
+One object with ``"format": "bild-mdo rotor geometry"``, ``"version": 2`` and a
 list ``"designs"`` of objects with the keys ``"name"``, ``"airfoil"``,
 ``"num_blades"``, ``"loss_model"``, ``"radius [m]"``, ``"hub_radius [m]"``,
-``"r [m]"``, ``"chord [m]"``, ``"twist [deg]"`` (lists) and
+``"r [m]"``, ``"chord [m]"``, ``"twist [deg]"``, ``"dr [m]"`` (lists; ``dr``
+the width of the annulus each station stands for, which tile hub to tip) and
 ``"design_point"`` (``{"v_axial [m/s]": ..., "rpm [rpm]": ...}``), and
 ``"polar"``: the description of the design's polar
 (:func:`~bild_mdo.airfoil.serialize.polar_to_dict`: tables, analytic
@@ -14,6 +15,13 @@ stations read back are the same numbers (the twist, kept in degrees, to the
 last bit of the conversion).  Other keys
 (:meth:`~bild_mdo.results.design.DesignResult.to_json` adds ``"performance"``
 and ``"distributions"``) are ignored by the reader.
+
+The reader refuses a file of a newer ``"version"`` than it reads, stations
+whose widths do not tile hub to tip, and, for a version-1 file (no
+``"dr [m]"``), end stations farther from hub or tip than one station spacing
+(:func:`~bild_mdo.io.geometry.check_stations`); a twist declared in rad whose
+values look like degrees is refused with that said.  A UTF-8 byte-order mark
+is skipped.
 """
 from __future__ import annotations
 
@@ -25,7 +33,11 @@ import numpy as np
 from bild_mdo import validation
 from bild_mdo.io.airfoil import polar_description, polar_from_description
 from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, RotorGeometry,
-                                  as_geometry, design_point_key, file_errors, split_key, unit_key)
+                                  as_geometry, check_stations, check_version, design_point_key, file_errors,
+                                  read_text, split_key, twist_to_radians, unit_key)
+
+#: What to do with a file without widths whose end stations are far from hub or tip.
+_FIX = "write the file again from the design (bild-mdo design --json), or give each station's width in a 'dr [m]' list"
 
 
 def _geometry_entry(geometry):
@@ -39,6 +51,7 @@ def _geometry_entry(geometry):
         unit_key("r", "m"): geometry.radii.tolist(),
         unit_key("chord", "m"): geometry.chord.tolist(),
         unit_key("twist", "deg"): geometry.twist_deg.tolist(),
+        unit_key("dr", "m"): geometry.dr.tolist(),
         "design_point": {design_point_key(k): v for k, v in geometry.design_point.items()},
     }
 
@@ -77,7 +90,7 @@ def write_json(path, geometries, extras=None):
     for entry, extra in zip(entries, extras or []):
         entry.update(extra)
     doc = _plain({"format": FORMAT_NAME, "version": FORMAT_VERSION,
-                  "units": {"r": "m", "chord": "m", "twist": "deg", "radius": "m", "hub_radius": "m"},
+                  "units": {"r": "m", "chord": "m", "twist": "deg", "dr": "m", "radius": "m", "hub_radius": "m"},
                   "designs": entries})
     descriptions = {}
     for entry, geometry in zip(doc["designs"], geometries):
@@ -91,8 +104,11 @@ def write_json(path, geometries, extras=None):
     return path
 
 
-def _lookup(entry, name, default_units, path, scalar=False):
-    """Value of ``name [units]`` in a JSON entry, converted to SI (lengths) or rad (angles)."""
+def _lookup(entry, name, default_units, path, scalar=False, required=True):
+    """Value of ``name [units]`` in a JSON entry, converted to SI (lengths) or rad (angles).
+
+    None when absent and not ``required``.
+    """
     for key, value in entry.items():
         try:
             base, units = split_key(key)
@@ -105,17 +121,23 @@ def _lookup(entry, name, default_units, path, scalar=False):
             raise ValueError(f"{path}: {key!r} has unknown units; use one of {', '.join(table)}")
         what = "a number" if scalar else "a list of numbers"
         values = validation.real_array(f"{path}: {key!r}", value, requirement=what, ndim=(0,) if scalar else (1,))
+        if name == "twist":
+            return twist_to_radians(path, key, values, units)
         return values * table[units]
+    if not required:
+        return None
     raise ValueError(f"{path}: design entry lacks '{name} [{default_units}]'")
 
 
 def _load(path):
     try:
-        doc = json.loads(Path(path).read_text(encoding="utf-8"))
+        doc = json.loads(read_text(path))
     except json.JSONDecodeError as err:
         raise ValueError(f"{path}:{err.lineno}: not valid JSON ({err.msg}, column {err.colno})") from None
     if not isinstance(doc, dict) or doc.get("format") != FORMAT_NAME or "designs" not in doc:
         raise ValueError(f"{path}: not a {FORMAT_NAME!r} JSON file")
+    # Files from before the version key are version 1.
+    check_version(path, doc.get("version", 1))
     designs = doc["designs"]
     if not isinstance(designs, list) or not designs:
         raise ValueError(f"{path}: 'designs' must be a non-empty list of design entries, got {_short(designs)}")
@@ -168,10 +190,12 @@ def read_json(path, design=0, load_polar=True):
         polar = None
         if load_polar and entry.get("polar") is not None:
             polar = polar_from_description(entry["polar"], f"{path}: design {design}")
-        return RotorGeometry(radii=_lookup(entry, "r", "m", path), chord=_lookup(entry, "chord", "m", path),
-                             twist=_lookup(entry, "twist", "deg", path),
-                             radius=float(_lookup(entry, "radius", "m", path, scalar=True)),
-                             hub_radius=float(_lookup(entry, "hub_radius", "m", path, scalar=True)),
-                             num_blades=entry["num_blades"], airfoil=entry.get("airfoil"),
-                             loss_model=entry.get("loss_model", "tip_hub"), design_point=point,
-                             name=entry.get("name", path.stem), polar=polar)
+        geometry = RotorGeometry(radii=_lookup(entry, "r", "m", path), chord=_lookup(entry, "chord", "m", path),
+                                 twist=_lookup(entry, "twist", "deg", path),
+                                 radius=float(_lookup(entry, "radius", "m", path, scalar=True)),
+                                 hub_radius=float(_lookup(entry, "hub_radius", "m", path, scalar=True)),
+                                 num_blades=entry["num_blades"], airfoil=entry.get("airfoil"),
+                                 loss_model=entry.get("loss_model", "tip_hub"), design_point=point,
+                                 name=entry.get("name", path.stem), polar=polar)
+        dr = _lookup(entry, "dr", "m", path, required=False)
+        return check_stations(f"{path}: design {design}" if len(designs) > 1 else path, geometry, dr, fix=_FIX)

@@ -28,14 +28,19 @@ extrapolated linearly from the two nearest stations (the chord limited to at
 least half the nearest station's, as QPROP needs positive chords).  ``r`` and
 ``c`` are written in metres and ``beta`` in degrees with factors 1 and offsets
 0, and those units are declared in the ``#  r [m]  chord [m]  beta [deg]``
-comment above the rows.  bild-mdo's metadata (airfoil, hub radius, design
-point, ``end_stations = extrapolated`` and, for a polar that its name
+comment above the rows.  bild-mdo's metadata (format version, airfoil, hub
+radius, the station widths ``dr [m]`` of the BILD stations, design point,
+``end_stations = extrapolated`` and, for a polar that its name
 does not rebuild, ``polar_file = <stem>.polar.json``, the polar file written
 next to it, :mod:`bild_mdo.io.airfoil`) sit in
 ``# bild-mdo: key [unit] = value`` comment lines, which QPROP skips; reading
 such a file drops the two extrapolated rows again, so the round trip returns
-the BILD stations.  A QPROP file from elsewhere is read with QPROP's meaning:
-the blade runs from the first station (the hub radius) to ``R``.
+the BILD stations, and checks them against the widths (a file that lost
+rows is refused, :func:`~bild_mdo.io.geometry.check_stations`).  A QPROP
+file from elsewhere is read with QPROP's meaning: the blade runs from the
+first station (the hub radius) to ``R``; its last station may be at most one
+station spacing from ``R`` (:func:`~bild_mdo.io.geometry.check_end_gaps`),
+else its annulus would stretch over blade the file does not describe.
 
 The airfoil lines are fitted to the polar (a spanwise set: its blend at
 r/R = :data:`QPROP_RADIAL_FRACTION`) at the design's reference Reynolds
@@ -65,8 +70,8 @@ from bild_mdo.atmosphere import isa
 from bild_mdo.constants import angular_velocity
 from bild_mdo.io.airfoil import (needs_polar_file, polar_description, polar_file_for, read_polar_file,
                                  resolve_airfoil, write_polar_file)
-from bild_mdo.io.geometry import (FORMAT_VERSION, FileMetadata, as_geometry, design_point_key, file_errors,
-                                  format_number)
+from bild_mdo.io.geometry import (FORMAT_VERSION, FileMetadata, as_geometry, check_stations, design_point_key,
+                                  file_errors, format_number, read_text)
 
 #: Half width (in cl) of the band about the fitted lift line that counts as attached flow.
 LINEAR_LIFT_BAND = 0.05
@@ -226,6 +231,8 @@ def write_qprop(path, geometry, polar=None, reynolds=None):
         f"# bild-mdo: airfoil = {geometry.airfoil or ''}",
         f"# bild-mdo: loss_model = {geometry.loss_model}",
         f"# bild-mdo: hub_radius [m] = {format_number(geometry.hub_radius)}",
+        # The widths of the BILD stations (not of the hub and tip rows): QPROP reads no comment line.
+        "# bild-mdo: dr [m] = " + " ".join(map(format_number, geometry.dr)),
     ]
     for key, value in geometry.design_point.items():
         lines.append(f"# bild-mdo: design_point.{design_point_key(key)} = {format_number(value)}")
@@ -298,7 +305,7 @@ def read_qprop(path, load_polar=True):
 
 def _read_qprop(path):
     meta, content = FileMetadata(path), []
-    for line_no, raw in enumerate(path.read_text(encoding="utf-8").splitlines(), start=1):
+    for line_no, raw in enumerate(read_text(path).splitlines(), start=1):
         stripped = raw.strip()
         if stripped.startswith("#"):
             body = stripped.lstrip("#").strip()
@@ -313,6 +320,8 @@ def _read_qprop(path):
         text = stripped.split("!", 1)[0].strip()
         if text:
             content.append((line_no, text))
+    # First: a newer file may hold lines this reader does not know.
+    meta.version()
     if len(content) < 9:
         raise ValueError(f"{path}: too short for a QPROP propeller file (name, 7 parameter lines, stations)")
     (_, name), blades_line = content[0], content[1]
@@ -345,5 +354,13 @@ def _read_qprop(path):
             raise ValueError(f"{path}: a bild-mdo QPROP file needs at least 2 stations besides hub and tip rows")
         radii, chord, beta = radii[1:-1], chord[1:-1], beta[1:-1]
     hub = meta.length("hub_radius", hub)
-    return meta.geometry(radii, chord, beta, radius=tip, hub_radius=hub, num_blades=num_blades, name=name,
-                         polar_coefficients=coefficients), meta.text("polar_file")
+    geometry = meta.geometry(radii, chord, beta, radius=tip, hub_radius=hub, num_blades=num_blades, name=name,
+                             polar_coefficients=coefficients)
+    if "format" in meta:
+        fix = "write the file again from the design (bild-mdo design --qprop)"
+    else:
+        fix = ("add a station row at r = R, or leave R out of the Nblades line (the blade then ends at the last "
+               "station, as QPROP integrates it)")
+        if rfac != 1.0:
+            fix += f"; R is not scaled by Rfac = {rfac:g}, as in QPROP"
+    return check_stations(path, geometry, meta.lengths("dr"), fix=fix), meta.text("polar_file")

@@ -360,7 +360,7 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     def run(points, mode):
         return analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, speeds[points],
                              velocities[points], geom.num_blades, polar, altitude=altitude, loss_model=loss_model,
-                             radii=geom.radii, on_invalid=mode, collective_pitch=pitch[points])
+                             radii=geom.radii, dr=geom.dr, on_invalid=mode, collective_pitch=pitch[points])
 
     r_over_r = np.broadcast_to(np.asarray(geom.radii) / geom.radius, (count, np.size(geom.radii)))
     bem, performance, stations, status = _analyze_points(run, count, on_invalid, r_over_r)

@@ -2,9 +2,14 @@
 
 Property: a reader either returns values that are all finite (a geometry, a polar table) or raises
 ValueError whose message is one line naming the file; never another exception type, never a NaN.
+Files that would lie are refused, whatever the draw: stations cut from either end (of a file with station
+widths, format 2, and of one without, format 1), a format version newer than the reader, a twist in rad
+that is in degrees; a byte-order mark changes nothing; a binary polar file is named as not text.
 """
 import atexit
+import json
 import os
+import re
 import shutil
 import tempfile
 from pathlib import Path
@@ -15,7 +20,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from bild_mdo.airfoil.sources.readers import read_polar_file
+from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.io.csv import read_csv
+from bild_mdo.io.geometry import FORMAT_VERSION
 from bild_mdo.io.json import read_json
 from bild_mdo.io.qprop import read_qprop
 from tests.fuzz.samples import POLAR_TABLE, XFOIL_POLAR, geometry_texts
@@ -122,3 +129,112 @@ def test_deeply_nested_json_is_one_line():
                   + "}")
     _read(path, ".json")
 
+
+
+def _refused(path, suffix, pattern):
+    """Reading ``path`` raises one ValueError line that names the file and matches ``pattern``."""
+    with pytest.raises(ValueError) as info:
+        READERS[suffix](path)
+    message = str(info.value)
+    assert "\n" not in message and str(path) in message, message
+    assert re.search(pattern, message), message
+
+
+def _format_1(suffix, text):
+    """The seed as format 1 wrote it: no station widths, version 1."""
+    if suffix == ".csv":
+        lines = text.replace("format 2", "format 1").splitlines()
+        return "\n".join(line if line.startswith("#") else line.rsplit(",", 1)[0] for line in lines) + "\n"
+    if suffix == ".json":
+        doc = json.loads(text)
+        doc["version"] = 1
+        for entry in doc["designs"]:
+            del entry["dr [m]"]
+        return json.dumps(doc)
+    return "\n".join(line.replace("format = 2", "format = 1") for line in text.splitlines()
+                     if not line.startswith("# bild-mdo: dr [m]")) + "\n"
+
+
+def _cut(suffix, text, count, from_tip):
+    """The text with ``count`` station rows cut from the tip end (or the hub end)."""
+    if suffix == ".json":
+        doc = json.loads(text)
+        entry = doc["designs"][0]
+        for key in ("r [m]", "chord [m]", "twist [deg]", "dr [m]"):
+            if key in entry:
+                entry[key] = entry[key][:-count] if from_tip else entry[key][count:]
+        return json.dumps(doc)
+    lines = text.splitlines()
+    if suffix == ".csv":
+        rows = [i for i, line in enumerate(lines) if line and not line.startswith("#")][1:]
+    else:
+        rows = [i for i, line in enumerate(lines) if line.strip() and not line.lstrip().startswith("#")][8:]
+    drop = set(rows[-count:] if from_tip else rows[:count])
+    return "\n".join(line for i, line in enumerate(lines) if i not in drop) + "\n"
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".json", ".prop"])
+@pytest.mark.parametrize("version", [1, 2])
+@settings(max_examples=8 * SCALE, deadline=None, database=None)
+@given(count=st.integers(1, 2), from_tip=st.booleans())
+def test_cut_files_are_refused(suffix, version, count, from_tip):
+    # The seed blade has 4 stations (QPROP: 6 rows with the hub and tip rows); cutting 1 or 2 from either end
+    # leaves a span its stations do not tile: the widths no longer add up (format 2), or an end station lies
+    # 1.5 spacings or more from the hub or tip (format 1).
+    text = SEEDS[suffix] if version == 2 else _format_1(suffix, SEEDS[suffix])
+    path = _write(f"cut{suffix}", _cut(suffix, text, count, from_tip))
+    _refused(path, suffix, r"stations are missing|stations but \d+ widths|at least 2 stations")
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".json", ".prop"])
+@settings(max_examples=8 * SCALE, deadline=None, database=None)
+@given(version=st.integers(FORMAT_VERSION + 1, 10**6))
+def test_newer_files_are_refused(suffix, version):
+    text = SEEDS[suffix]
+    text = (text.replace("format 2", f"format {version}") if suffix == ".csv" else
+            text.replace('"version": 2', f'"version": {version}') if suffix == ".json" else
+            text.replace("format = 2", f"format = {version}"))
+    _refused(_write(f"new{suffix}", text), suffix, rf"format version {version} is newer than this bild-mdo reads")
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".json"])
+@settings(max_examples=10 * SCALE, deadline=None, database=None)
+@given(twist=st.lists(st.floats(6.3, 360.0), min_size=4, max_size=4))
+def test_twist_in_degrees_declared_rad_is_named(suffix, twist):
+    if suffix == ".csv":
+        lines = SEEDS[suffix].replace("twist [deg]", "twist [rad]").splitlines()
+        header = next(i for i, line in enumerate(lines) if line.startswith("r [m]"))
+        for k, value in enumerate(twist):
+            cells = lines[header + 1 + k].split(",")
+            cells[2] = repr(value)
+            lines[header + 1 + k] = ",".join(cells)
+        text = "\n".join(lines) + "\n"
+    else:
+        doc = json.loads(SEEDS[suffix])
+        entry = doc["designs"][0]
+        del entry["twist [deg]"]
+        entry["twist [rad]"] = twist
+        text = json.dumps(doc)
+    _refused(_write(f"deg{suffix}", text), suffix, r"the values look like degrees, but the file gives them in rad")
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".json", ".prop"])
+def test_byte_order_mark_changes_nothing(suffix):
+    plain, marked = _write(f"plain{suffix}", SEEDS[suffix]), _write(f"bom{suffix}", "\ufeff" + SEEDS[suffix])
+    a, b = READERS[suffix](plain), READERS[suffix](marked)
+    for name in ("radii", "chord", "twist", "dr"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+    assert (a.radius, a.hub_radius, a.num_blades, a.design_point) == (b.radius, b.hub_radius, b.num_blades,
+                                                                      b.design_point)
+
+
+@settings(max_examples=25 * SCALE, deadline=None, database=None)
+@given(head=st.binary(max_size=100), control=st.sampled_from([bytes([c]) for c in [*range(9), *range(14, 32), 127]]),
+       tail=st.binary(max_size=100))
+def test_binary_polar_files_are_named_not_text(head, control, tail):
+    path = _write("polar.dat", head + control + tail)
+    with pytest.raises(ValueError) as info:
+        resolve_airfoil(str(path))
+    message = str(info.value)
+    assert "\n" not in message and message.startswith(f"{path}: "), message
+    assert "not a text polar file" in message or "UTF-16 text; save it as UTF-8" in message, message

@@ -1,4 +1,5 @@
-"""QPROP propeller files: foreign files read with QPROP's meaning, hub and tip rows, the airfoil-model fit."""
+"""QPROP propeller files: foreign files read with QPROP's meaning, hub and tip rows, the airfoil-model fit, and
+the checks that keep a file from lying (station widths, format version, byte-order mark)."""
 import numpy as np
 import pytest
 
@@ -78,7 +79,6 @@ def test_qprop_airfoil_fit_of_the_analytic_polar():
     assert coeffs["CLmin"] < 0.0 < coeffs["CLCD0"] < coeffs["CLmax"]
 
 
-
 def test_too_short_file(tmp_path):
     (tmp_path / "short.prop").write_text("name\n 2 ! Nblades\n")
     with pytest.raises(ValueError, match="too short"):
@@ -109,3 +109,70 @@ def test_polar_from_qprop_checks_the_lift_slope():
                         REref=7e4, REexp=-0.7)
     with pytest.raises(ValueError, match="CL_a must be a positive finite number"):
         polar_from_qprop(coefficients)
+
+
+def _station_rows(path):
+    """Line numbers (0-based) of the station rows of a QPROP file."""
+    lines = path.read_text().splitlines()
+    content = [i for i, line in enumerate(lines) if line.strip() and not line.lstrip().startswith("#")]
+    return lines, content[8:]
+
+
+def test_qprop_file_carries_version_and_widths(tmp_path, design):
+    text = write_qprop(tmp_path / "blade.prop", design).read_text()
+    assert "# bild-mdo: format = 2\n" in text
+    widths = next(line for line in text.splitlines() if line.startswith("# bild-mdo: dr [m] = ")).split("=")[1]
+    # BILD's 9 equal annuli from 0.3 m to 1.5 m, one width per BILD station (not for the hub and tip rows).
+    np.testing.assert_allclose(np.array(widths.split(), dtype=float), np.full(9, 1.2 / 9), rtol=FILE_RTOL)
+
+
+def test_cut_qprop_file_is_refused(tmp_path, design):
+    # Cut after the 5th BILD station: the reader takes the last row left for the tip row and keeps 4 stations.
+    path = write_qprop(tmp_path / "blade.prop", design)
+    lines, rows = _station_rows(path)
+    path.write_text("\n".join(lines[:rows[5] + 1]) + "\n")
+    with pytest.raises(ValueError, match=r"^\S*blade\.prop: 4 stations but 9 widths 'dr \[m\]': the file was cut or "
+                                         r"edited; write it again from the design$"):
+        read_qprop(path)
+
+
+def test_format_1_qprop_file_is_read_and_checked(tmp_path, design, assert_same_geometry):
+    path = write_qprop(tmp_path / "blade.prop", design)
+    lines = [line.replace("format = 2", "format = 1") for line in path.read_text().splitlines()
+             if not line.startswith("# bild-mdo: dr [m]")]
+    path.write_text("\n".join(lines) + "\n")
+    assert_same_geometry(read_qprop(path), design.geometry())
+    # Without its tip row and the last BILD station (cut two rows), the reader drops the 8th station as the tip
+    # row: 7 stations, the last at 0.3 + 6.5 * 0.133333 = 1.166667 m, 2.5 spacings from the tip (hand derivation).
+    lines, rows = _station_rows(path)
+    path.write_text("\n".join(lines[:rows[-3] + 1]) + "\n")
+    with pytest.raises(ValueError, match=r"blade\.prop: the last station \(r = 1\.16667 m\) is 0\.333333 m from the "
+                                         r"tip \(R = 1\.5 m\), .*; write the file again from the design "
+                                         r"\(bild-mdo design --qprop\)$"):
+        read_qprop(path)
+
+
+def test_foreign_file_whose_stations_end_short_of_r_is_refused(tmp_path):
+    # R = 8 in on the Nblades line, unscaled as in QPROP, and Rfac = 1: the last station (5 in) lies 3 in from R,
+    # more than the 2 in to its neighbour.
+    text = (FOREIGN_QPROP.replace(" 2              ! Nblades  [ R ]", " 2  8.0  ! Nblades  [ R ]")
+            .replace(" 0.0254  0.0254   1.0  !  Rfac   Cfac   Bfac", " 1.0  1.0  1.0"))
+    path = tmp_path / "short.prop"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=r"short\.prop: the last station \(r = 5 m\) is 3 m from the tip \(R = 8 m\), "
+                                         r"more than the 2 m to its neighbour: .*; add a station row at r = R, or "
+                                         r"leave R out of the Nblades line"):
+        read_qprop(path)
+
+
+def test_newer_qprop_file_is_refused(tmp_path, design):
+    path = write_qprop(tmp_path / "blade.prop", design)
+    path.write_text(path.read_text().replace("format = 2", "format = 99"))
+    with pytest.raises(ValueError, match=r"^\S*blade\.prop: format version 99 is newer than this bild-mdo reads"):
+        read_qprop(path)
+
+
+def test_byte_order_mark_is_read(tmp_path, design, assert_same_geometry):
+    path = write_qprop(tmp_path / "blade.prop", design)
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    assert_same_geometry(read_qprop(path), design.geometry())

@@ -140,7 +140,7 @@ def read_lines(path):
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8", errors="replace")
+        text = path.read_text(encoding="utf-8-sig", errors="replace")
     except FileNotFoundError:
         raise PolarFileError(f"{path}: no such polar file") from None
     except IsADirectoryError:
