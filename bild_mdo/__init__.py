@@ -5,7 +5,7 @@ using blade element momentum theory", AIAA Journal 61(9), 2023.
 
 The public API is re-exported here::
 
-    from bild_mdo import BILDGroup, BEMAnalysisGroup, analyze_rotor, design_rotor, naca4412
+    from bild_mdo import BILDGroup, BEMAnalysisGroup, analyze_rotor, design_rotor, naca4412, optimize_rotor
 
 Importing bild_mdo needs no optional package (cyipopt, matplotlib, dask):
 :class:`IpoptDriver` imports cyipopt only when a driver is made.
@@ -20,6 +20,7 @@ from bild_mdo.bild import BILDGroup
 from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
 from bild_mdo.mil import MILGroup, design_mil
 from bild_mdo.multipoint import MultipointRotorGroup
+from bild_mdo.optimization import optimize_rotor
 from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_design_sweep
 
@@ -28,5 +29,5 @@ __all__ = [
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
     "MultipointRotorGroup", "OffDesignResult", "Polar", "RotorGeometry", "SpanwisePolar", "TabulatedPolar",
     "TipMachWarning", "__version__", "analyze_rotor", "design_mil", "design_rotor", "get_polar", "isa",
-    "naca4412", "off_design_sweep", "read_geometry", "resolve_polar", "spanwise_polar", "write_geometry",
+    "naca4412", "off_design_sweep", "optimize_rotor", "read_geometry", "resolve_polar", "spanwise_polar", "write_geometry",
 ]

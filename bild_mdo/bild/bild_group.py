@@ -263,6 +263,9 @@ class BILDGroup(om.Group):
     def setup(self):
         opts = self.options
         nn, nr, b = opts["num_nodes"], opts["num_radial"], opts["num_blades"]
+        if nr < 2:
+            raise ValueError(f"{self.msginfo}: num_radial must be at least 2 (a blade needs stations from hub to tip "
+                             f"for its loading and chord), got {nr}")
         # Per-design components get num_nodes only; components with stations also get num_radial.
         node = dict(num_nodes=nn)
         size = dict(num_nodes=nn, num_radial=nr)

@@ -36,6 +36,9 @@ def run_demo(args, out):
     int
         Exit code, 0.
     """
+    if not str(args.output_dir).strip():
+        raise ValueError("--output-dir is empty: give the folder for the demo's files (default bild-mdo-demo), "
+                         "or '.' for the current folder")
     folder = output_folder("--output-dir", args.output_dir)
     polar = airfoil_polar("--airfoil", args.airfoil)
     try:

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import angular_velocity
 from bild_mdo.optimization.parameterization import station_fractions
 
@@ -117,3 +118,29 @@ def linear_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, rho, 
     chord = c_ref * (1.5 - x)
     twist = ends[0] + (ends[1] - ends[0]) * (radii - radii[0]) / (radii[-1] - radii[0])
     return chord, twist
+
+
+def bild_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, altitude, num_radial, num_blades, polar,
+                        loss_model):
+    """The paper's BILD blade for the case, designed for its thrust: ``(chord, twist)`` at the stations (m, rad).
+
+    BILD (reference section point, paper loading, r_ref = R / 2) with its reference chord solved for
+    ``thrust_target`` (:class:`~bild_mdo.bild.BILDGroup` with ``thrust_target=True``); its stations are the
+    midpoints of equal annuli from hub to tip, those of the optimisation.  ValueError in one line where the
+    ideal loading cannot give the thrust.
+    """
+    if not 0.0 < hub_radius < 0.5 * radius:
+        raise ValueError(f"initial='bild' puts BILD's reference station at r = R/2, outside the hub; the hub "
+                         f"radius {hub_radius:g} m of R = {radius:g} m leaves none: give initial='linear' or "
+                         "bild_chord and bild_twist")
+    prob = bild_problem(num_radial=num_radial, num_blades=num_blades, airfoil=polar, loss_model=loss_model,
+                        thrust_target=True, on_infeasible="flag")
+    for name, value, units in (("v_axial", v_axial, "m/s"), ("rpm", rpm, "rpm"), ("radius", radius, "m"),
+                               ("hub_radius_ratio", hub_radius / radius, None), ("ref_radius_ratio", 0.5, None),
+                               ("altitude", altitude, "m"), ("thrust_target", thrust_target, "N")):
+        prob.set_val(name, value, units=units)
+    prob.run_model()
+    if prob.model.feasibility.infeasible[0]:
+        raise ValueError(f"initial='bild': no BILD design gives T* = {thrust_target:g} N here "
+                         f"({prob.model.feasibility.status()[0]}); give initial='linear' or bild_chord and bild_twist")
+    return prob.get_val("chord", units="m")[0].copy(), prob.get_val("twist", units="rad")[0].copy()

@@ -28,7 +28,8 @@ from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
 from bild_mdo.optimization.initial_design import (CHORD_RATIO_BOUNDS, INITIAL_DESIGNS, TWIST_LIMITS,
-                                                  ideal_energy_loss, linear_initial_design, twist_bounds)
+                                                  bild_initial_design, ideal_energy_loss, linear_initial_design,
+                                                  twist_bounds)
 from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.optimization.parameterization import (PARAMETERIZATIONS, design_value_fractions, fit_design_values,
                                                     parameterization_matrix)
@@ -123,7 +124,9 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
         cold start from a linear root-to-tip guess
         (:func:`~bild_mdo.optimization.initial_design.linear_initial_design`).
     bild_chord, bild_twist : array_like, shape (num_radial,), optional
-        BILD geometry at the stations (m, rad); required for ``initial='bild'``.
+        BILD geometry at the stations (m, rad) for ``initial='bild'``; without them the
+        paper's BILD designs the case's blade for ``thrust_target``
+        (:func:`~bild_mdo.optimization.initial_design.bild_initial_design`).
     reference_chord : float, optional
         Chord scale of the linear guess (m); default 0.1 R.
     parameterization : {'stations', 'bspline'}
@@ -300,8 +303,12 @@ def case_design_values(meta, v_axial, rpm, radius, hub_radius, thrust_target, al
     nr = meta["num_radial"]
     rho = float(isa(altitude).rho)
     if initial == "bild":
-        if bild_chord is None or bild_twist is None:
-            raise ValueError("initial='bild' needs bild_chord and bild_twist (the BILD geometry at the stations)")
+        if (bild_chord is None) != (bild_twist is None):
+            raise ValueError("initial='bild' takes bild_chord and bild_twist together (the BILD geometry at the "
+                             "stations), or neither (then the paper's BILD designs the case's blade)")
+        if bild_chord is None:
+            bild_chord, bild_twist = bild_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, altitude,
+                                                         nr, meta["num_blades"], meta["polar"], meta["loss_model"])
         chord0 = np.asarray(bild_chord, dtype=float).ravel()
         twist0 = np.asarray(bild_twist, dtype=float).ravel()
     elif initial == "linear":

@@ -22,12 +22,14 @@ size only set inputs and run the model.
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.airfoil.load_path_table import data_reynolds_range
-from bild_mdo.atmosphere import MAX_ALTITUDE
+from bild_mdo.atmosphere import MAX_ALTITUDE, isa
 from bild_mdo.bem.metrics import warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
@@ -40,7 +42,48 @@ from bild_mdo.results.design_analysis import analyze_designs
 from bild_mdo.results.design_result import (DISTRIBUTION_UNITS, DISTRIBUTIONS, INPUT_UNITS, NODE_OUTPUT_UNITS,
                                             ON_INFEASIBLE, OPTIONAL_OUTPUTS, DesignResult)
 
-__all__ = ["DesignResult", "design_rotor"]
+__all__ = ["DesignResult", "UnloadedStationsWarning", "design_rotor"]
+
+#: Largest helical tip Mach number a design is attempted at: far past the sonic tip, where the blade-element
+#: polar and momentum theory already fail (a warning from 1 on); beyond it the inputs are a mistake (rpm in rad/s?).
+MAX_TIP_MACH = 3.0
+
+
+class UnloadedStationsWarning(UserWarning):
+    """A design leaves stations unloaded (zero chord): its ideal loading carries nothing there."""
+
+
+def _check_tip_mach(values, input_mode):
+    """ValueError if the helical tip Mach number of some design exceeds :data:`MAX_TIP_MACH`."""
+    omega_r = values["rpm"] * (RPM_TO_REV_PER_S * 2.0 * np.pi) * values["radius"]
+    speed = values[input_mode] * (values["rpm"] * RPM_TO_REV_PER_S * 2.0 * values["radius"]
+                                  if input_mode == "advance_ratio" else 1.0)
+    tip_mach = np.hypot(speed, omega_r) / isa(values["altitude"], derivatives=False).speed_of_sound
+    bad = np.flatnonzero(tip_mach > MAX_TIP_MACH)
+    if bad.size:
+        where = f" (design {int(bad[0])})" if tip_mach.size > 1 else ""
+        raise ValueError(f"tip Mach number {tip_mach[bad[0]]:.3g}{where} from rpm, radius and speed is far beyond "
+                         f"any rotor (BILD refuses above {MAX_TIP_MACH:g}; polars and momentum theory fail past 1): "
+                         "check rpm [rpm] and radius [m]")
+
+
+def _fraction_range(fractions):
+    return f"{fractions[0]:.3f}" if fractions.size == 1 else f"{fractions[0]:.3f}..{fractions[-1]:.3f}"
+
+
+def _warn_unloaded(chord, feasible, radial_fractions, is_batch):
+    """One :class:`UnloadedStationsWarning` naming the designs that leave stations at zero chord."""
+    unloaded = (chord <= 0.0) & feasible[:, None]
+    designs = np.flatnonzero(np.any(unloaded, axis=1))
+    if designs.size == 0:
+        return
+    first = int(designs[0])
+    stations = np.flatnonzero(unloaded[first])
+    where = f"{stations.size} of {chord.shape[1]} stations at r/R {_fraction_range(radial_fractions[first, stations])}"
+    label = (f"{designs.size} design(s) leave stations unloaded (zero chord), design {first}: {where}" if is_batch
+             else f"the design leaves {where} unloaded (zero chord)")
+    warnings.warn(f"{label}: the ideal loading carries nothing there (a light loading: raise ref_chord or the "
+                  "thrust if that is not meant); result.summary() lists them", UnloadedStationsWarning, stacklevel=3)
 
 
 def _model_outputs(prob):
@@ -210,6 +253,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     is_batch = any(arr.ndim == 1 for arr in values.values())
     nn = validation.batch_size({name: arr.size for name, arr in values.items() if arr.ndim == 1})
     values = {name: np.broadcast_to(arr, (nn,)).astype(float) for name, arr in values.items()}
+    _check_tip_mach(values, input_mode)
     validation.memory_bound("designs", nn, num_radial, hint="design in smaller batches or with fewer stations")
 
     config = dict(num_nodes=nn, num_radial=num_radial, num_blades=num_blades, loss_model=loss_model,
@@ -247,6 +291,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     else:
         values["v_axial"] = np.array(prob.get_val("v_axial", units="m/s"))
     outputs["radial_fractions"] = outputs["radii"] / values["radius"][:, None]
+    _warn_unloaded(outputs["chord"], ~infeasible, outputs["radial_fractions"], is_batch)
     outputs.update(station_reynolds(outputs, values, polar))
     ordered = {name: outputs[name] for name in DISTRIBUTIONS if name in outputs}
     ordered.update({name: values[name] for name in INPUT_UNITS})

@@ -238,12 +238,14 @@ def design_notes(design):
                      f"(Re {np.min(re):.3g}..{np.max(re):.3g}) at r/R {_fractions(design, outside)}")
     chord = np.asarray(design.chord)
     loaded = chord > 0.0
-    if loaded.any():
+    if loaded.any() and not loaded.all():
+        unloaded = np.flatnonzero(~loaded)
         first, last = np.flatnonzero(loaded)[[0, -1]]
-        inner = np.flatnonzero(~loaded[first:last + 1]) + first
-        if inner.size:
-            notes.append(f"  {inner.size} unloaded station(s) (zero chord) between loaded ones at r/R "
-                         f"{_fractions(design, inner)}: their annulus is better left unloaded at this lambda")
+        inner = (unloaded > first) & (unloaded < last)
+        where = ("between loaded ones" if inner.all() else "at the tip" if np.all(unloaded > last)
+                 else "at the hub" if np.all(unloaded < first) else "at the hub, the tip or between loaded ones")
+        notes.append(f"  {unloaded.size} unloaded station(s) (zero chord) {where}, at r/R "
+                     f"{_fractions(design, unloaded)}: the ideal loading carries nothing there at this lambda")
     branch = design.values.get("section_branch")
     if branch is not None:
         both = loaded[:-1] & loaded[1:]

@@ -25,11 +25,11 @@ def declare_size_options(options, radial=True):
     radial : bool
         Whether the component has radial distributions (axis 1).
     """
-    options.declare("num_nodes", types=int, default=DEFAULT_NUM_NODES,
-                    desc="number of designs or operating points (axis 0)")
+    options.declare("num_nodes", types=int, default=DEFAULT_NUM_NODES, lower=1,
+                    desc="number of designs or operating points (axis 0), >= 1")
     if radial:
-        options.declare("num_radial", types=int, default=DEFAULT_NUM_RADIAL,
-                        desc="number of radial stations (axis 1)")
+        options.declare("num_radial", types=int, default=DEFAULT_NUM_RADIAL, lower=1,
+                        desc="number of radial stations (axis 1), >= 1")
 
 
 def sizes(options):

@@ -314,35 +314,37 @@ def run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=1, scheduler=No
     if optimize_chunk_fn is not None:
         task_fn = functools.partial(optimize_chunk_task, optimize_chunk_fn)
     relay = WarningRelay()
-    with ResultsStore(db_path, spec) as store:
-        damaged = store.damaged_ids()
-        if damaged:
-            store.drop(damaged)
-            shown = ", ".join(str(cid) for cid in damaged[:10]) + (" ..." if len(damaged) > 10 else "")
-            warnings.warn(f"{len(damaged)} stored cases of '{os.fspath(db_path)}' failed their checksum (damaged on "
-                          f"disk) and are computed again: {shown}", RuntimeWarning, stacklevel=2)
-        done = store.done_ids()
-        remaining = [case for case in cases if case.case_id not in done]
-        result = SweepResult(db_path=os.fspath(db_path), num_cases=len(cases), num_skipped=len(cases) - len(remaining),
-                             recomputed_ids=sorted(set(damaged) & {c.case_id for c in remaining}))
-        if remaining:
-            # Executor problems surface before the BILD batch, not after it.
-            client, owned = None, False
-            if scheduler is not None:
-                check_picklable(task_fn, "a Dask cluster")
-                client, owned = connect_dask(scheduler)
-            elif workers != 1:
-                check_picklable(task_fn, "worker processes")
-            try:
+    # Executor problems surface before the store file exists and before the BILD batch: a refused cluster
+    # leaves nothing behind.
+    client, owned = None, False
+    if scheduler is not None:
+        check_picklable(task_fn, "a Dask cluster")
+        client, owned = connect_dask(scheduler)
+    elif workers != 1:
+        check_picklable(task_fn, "worker processes")
+    try:
+        with ResultsStore(db_path, spec) as store:
+            damaged = store.damaged_ids()
+            if damaged:
+                store.drop(damaged)
+                shown = ", ".join(str(cid) for cid in damaged[:10]) + (" ..." if len(damaged) > 10 else "")
+                warnings.warn(f"{len(damaged)} stored cases of '{os.fspath(db_path)}' failed their checksum (damaged "
+                              f"on disk) and are computed again: {shown}", RuntimeWarning, stacklevel=2)
+            done = store.done_ids()
+            remaining = [case for case in cases if case.case_id not in done]
+            result = SweepResult(db_path=os.fspath(db_path), num_cases=len(cases),
+                                 num_skipped=len(cases) - len(remaining),
+                                 recomputed_ids=sorted(set(damaged) & {c.case_id for c in remaining}))
+            if remaining:
                 chunk = None
                 if optimize_chunk_fn is not None:
                     share = -(-len(remaining) // workers) if client is None else len(remaining)
                     chunk = max(1, min(int(chunk_size), share))
                 _compute(store, remaining, bild_batch_fn, task_fn, workers, client, progress, stream, result, relay,
                          chunk)
-            finally:
-                if owned:
-                    client.close()
+    finally:
+        if owned:
+            client.close()
     result.warnings = relay.shown
     result.wall_time = time.perf_counter() - start
     if result.setup_errors:

@@ -171,12 +171,12 @@ def test_windmilling_inboard_station_is_reported_with_its_remedy(chord_form):
 
 
 def test_hover_rotor_without_a_loaded_station_raises():
-    # One station at r/R = 0.6 with r_ref/R = 0.25 and a tiny c_ref: lambda < V_theta / (2 L/D) there, so the
-    # station is unloaded (eta2 = 1), T = Q = 0 and the efficiency / figure of merit would be 0/0.
-    prob = om.Problem(BILDGroup(num_nodes=1, num_radial=1, polar=AnalyticPolar(cd0=0.05, k=0.05)), reports=False)
+    # Two stations at r/R = 0.4 and 0.8 with r_ref/R = 0.21 and a tiny c_ref: lambda < V_theta / (2 L/D) at both,
+    # so no station is loaded (eta2 = 1), T = Q = 0 and the efficiency / figure of merit would be 0/0.
+    prob = om.Problem(BILDGroup(num_nodes=1, num_radial=2, polar=AnalyticPolar(cd0=0.05, k=0.05)), reports=False)
     prob.setup()
-    prob.set_val("ref_chord", [0.002])
-    prob.set_val("ref_radius_ratio", [0.25])
+    prob.set_val("ref_chord", [2e-4])
+    prob.set_val("ref_radius_ratio", [0.21])
     with pytest.raises(om.AnalysisError, match=r"(?s)BILD: 1 of 1 node.*no station can be loaded.*zero torque"):
         prob.run_model()
 

@@ -16,3 +16,10 @@ def test_demo_airfoil_is_checked_before_any_file(tmp_path, capsys):
     assert code == 2 and out == ""
     assert "--airfoil: unknown airfoil 'no_such_airfoil'" in err
     assert not (tmp_path / "demo").exists()
+
+
+def test_an_empty_output_folder_is_refused(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = run(capsys, "demo", "--output-dir", "")
+    assert code == 2 and "--output-dir is empty" in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []

@@ -10,8 +10,8 @@ from tests.optimization.conftest import case_args
 def test_input_errors():
     with pytest.raises(ValueError, match="optimizer must be one of"):
         build_optimization_problem(optimizer="cobyla")
-    with pytest.raises(ValueError, match="needs bild_chord and bild_twist"):
-        build_optimization_problem(0.0, 800.0, 1.0, 0.2, 400.0)
+    with pytest.raises(ValueError, match="takes bild_chord and bild_twist together"):
+        build_optimization_problem(0.0, 800.0, 1.0, 0.2, 400.0, bild_chord=[0.1] * 30)
     with pytest.raises(ValueError, match="unknown airfoil 'no_such_airfoil'"):
         build_optimization_problem(polar="no_such_airfoil")
     prob = build_optimization_problem()

@@ -119,3 +119,16 @@ def test_missing_dask_names_the_extra(tmp_path, monkeypatch):
         run_sweep(SPEC, tmp_path / "s.sqlite", standins.bild_batch, standins.optimize,
                   scheduler="tcp://127.0.0.1:8786", progress=False)
     assert str(info.value) == DASK_MISSING
+    # Refused before any work: no results store is left behind.
+    assert not (tmp_path / "s.sqlite").exists()
+
+
+def test_a_refused_scheduler_leaves_no_store(tmp_path, monkeypatch):
+    def refuse(scheduler):
+        raise OSError(f"Timed out trying to connect to {scheduler} after 30 s")
+
+    monkeypatch.setattr("bild_mdo.verification.runner.connect_dask", refuse)
+    with pytest.raises(OSError, match="Timed out trying to connect"):
+        run_sweep(SPEC, tmp_path / "s.sqlite", standins.bild_batch, standins.optimize,
+                  scheduler="tcp://127.0.0.1:1", progress=False)
+    assert not (tmp_path / "s.sqlite").exists()

@@ -131,8 +131,10 @@ def test_plug_in_errors_are_clear(tmp_path):
         run_sweep(SPEC, tmp_path / "b.sqlite", no_chord, standins.optimize, progress=False)
     with pytest.raises(ValueError, match="not picklable.*module-level function"):
         run_sweep(SPEC, tmp_path / "c.sqlite", standins.bild_batch, lambda c, b: {}, workers=2, progress=False)
+    # A run refused before any work leaves no store behind.
+    assert not (tmp_path / "c.sqlite").exists()
     with pytest.raises(StoreError, match="different sweep"):
-        run_sweep(SweepSpec(levels=3), tmp_path / "c.sqlite", standins.bild_batch, standins.optimize, progress=False)
+        run_sweep(SweepSpec(levels=3), tmp_path / "b.sqlite", standins.bild_batch, standins.optimize, progress=False)
 
 
 def test_malformed_optimize_results_become_failed_rows(tmp_path):

@@ -17,6 +17,10 @@ __all__ = ["parse_airfoil", "read_coordinates"]
 _NACA4 = re.compile(r"^\s*(?:naca)?[\s_-]*(\d+)\s*$", re.IGNORECASE)
 
 
+#: Thickest NACA section (% of chord) accepted: XFOIL's viscous polars of thicker ones rarely converge.
+MAX_NACA_THICKNESS = 40
+
+
 def parse_airfoil(airfoil):
     """Classify an airfoil argument as a NACA 4- or 5-digit designation or a coordinates file.
 
@@ -57,6 +61,13 @@ def parse_airfoil(airfoil):
         if int(digits[-2:]) == 0:
             raise ValueError(f"airfoil {text!r}: the last two digits give the thickness in percent "
                              f"of chord and must not be 00")
+        if int(digits[-2:]) > MAX_NACA_THICKNESS:
+            raise ValueError(f"airfoil {text!r}: a thickness of {int(digits[-2:])} % of chord is beyond what "
+                             f"XFOIL's polars hold (NACA sections up to {MAX_NACA_THICKNESS} %); rotor blades use "
+                             "about 6-25 %")
+        if len(digits) == 4 and digits[0] != "0" and digits[1] == "0":
+            raise ValueError(f"airfoil {text!r}: a NACA 4-digit designation is M P TT, the camber M % at P tenths "
+                             "of the chord; a camber needs a position P of 1-9 (e.g. 4412)")
         return "naca", digits
     path = Path(text)
     if path.is_file():
