@@ -16,6 +16,7 @@ from bild_mdo.bem.flow_states import ON_INVALID, SOLVE_RANGES
 from bild_mdo.bem.loads import SECTION_OUTPUTS
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS, warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
+from bild_mdo.fluid import resolve_fluid
 
 
 def station_radii(radius, hub_radius, num_radial):
@@ -118,7 +119,7 @@ def _voronoi_widths(radii, hub_radius, radius):
 
 def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, polar,
                   altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None,
-                  on_invalid="warn", solve_range="physical", collective_pitch=0.0, speed_of_sound=None):
+                  on_invalid="warn", solve_range="physical", collective_pitch=0.0, speed_of_sound=None, fluid=None):
     """Analyse one rotor or a batch of rotors in axial flow with BEM theory.
 
     Parameters
@@ -158,6 +159,9 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         ISA's at ``altitude``.
     collective_pitch : float or array_like
         Collective pitch (rad), scalar or ``(nn,)``, added to ``twist`` at every station.
+    fluid : Fluid, str or (rho, mu, speed_of_sound), optional
+        Any fluid (:mod:`bild_mdo.fluid`: ``'water'``, ``'seawater'``, ``'air'`` ...) instead of the
+        ISA; the same as giving its ``rho``, ``mu`` and ``speed_of_sound`` (not together with them).
 
     on_invalid : {'warn', 'raise', 'ignore'}
         Stations in a flow state the momentum model does not represent: no momentum solution
@@ -187,6 +191,11 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         sign change exists; where the total torque is zero (no performance metrics).
     """
     polar = resolve_polar(polar)
+    if fluid is not None:
+        if rho is not None or mu is not None or speed_of_sound is not None:
+            raise ValueError("give either fluid or rho, mu (and speed_of_sound), not both")
+        fluid = resolve_fluid(fluid)
+        rho, mu, speed_of_sound = fluid.rho, fluid.mu, fluid.speed_of_sound
     validation.choice("loss_model", loss_model, LOSS_MODELS)
     validation.choice("on_invalid", on_invalid, ON_INVALID)
     validation.choice("solve_range", solve_range, SOLVE_RANGES)

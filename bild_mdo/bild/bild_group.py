@@ -6,6 +6,7 @@ import openmdao.api as om
 
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.atmosphere import AtmosphereComp
+from bild_mdo.fluid import FLUIDS, fluid_arrays
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.bem.performance import RotorPerformanceComp
 from bild_mdo.bem.prandtl import LOSS_MODELS
@@ -24,7 +25,7 @@ from bild_mdo.bild.thrust_target import ReferenceChordSolver, ThrustTargetComp
 from bild_mdo.bild.variants import VARIANTS
 from bild_mdo.bild.variants.base import Wiring
 from bild_mdo.utils.linear_solvers import TriangularDirectSolver
-from bild_mdo.utils.options import declare_size_options
+from bild_mdo.utils.options import VARIABLES, declare_size_options
 
 INPUT_MODES = ("v_axial", "advance_ratio")
 
@@ -197,7 +198,10 @@ class BILDGroup(om.Group):
     thrust_target[nn] (N)
         Required thrust, > 0 (only with ``thrust_target=True``).
     altitude[nn] (m)
-        Geometric altitude for the ISA atmosphere.
+        Geometric altitude for the ISA atmosphere; with ``use_atmosphere=False``
+        instead ``rho[nn] (kg/m**3)``, ``mu[nn] (Pa*s)`` and
+        ``speed_of_sound[nn] (m/s)`` of any fluid (default: sea-level air;
+        :mod:`bild_mdo.fluid`).
 
     Outputs
     -------
@@ -256,6 +260,9 @@ class BILDGroup(om.Group):
         self.options.declare("section_point", default="reference", check_valid=_check_section_point,
                              desc="'reference': every station at the max-L/D point of the reference Reynolds "
                                   "number (the paper); 'local': each station minimises cd/cl at its fixed load")
+        self.options.declare("use_atmosphere", types=bool, default=True,
+                             desc="rho, mu and speed_of_sound from the ISA at input altitude (else they are inputs: "
+                                  "any fluid, bild_mdo.fluid)")
         self.options.declare("ideal_loading", default="paper", values=IDEAL_LOADINGS,
                              desc="'paper': lambda and eta2 of Eqs. (22), (27); 'exact': each annulus makes "
                                   "E - lambda T stationary with the Prandtl factor F differentiated too")
@@ -275,8 +282,9 @@ class BILDGroup(om.Group):
         self.feasibility = FeasibilityLedger(nn)
         checked = dict(feasibility=self.feasibility)
 
-        self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
-                           promotes_outputs=["rho", "mu", "speed_of_sound"])
+        if opts["use_atmosphere"]:
+            self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
+                               promotes_outputs=["rho", "mu", "speed_of_sound"])
         if opts["input_mode"] == "advance_ratio":
             self.add_subsystem("advance_ratio", AdvanceRatioComp(**node),
                                promotes_inputs=["advance_ratio", "rpm", "radius"], promotes_outputs=["v_axial"])
@@ -325,4 +333,8 @@ class BILDGroup(om.Group):
             self.set_input_defaults("thrust_target", val=np.full(nn, 1000.0), units="N")
         else:
             self.set_input_defaults("ref_chord", val=np.full(nn, 0.15), units="m")
-        self.set_input_defaults("altitude", val=np.zeros(nn), units="m")
+        if opts["use_atmosphere"]:
+            self.set_input_defaults("altitude", val=np.zeros(nn), units="m")
+        else:
+            for name, value in fluid_arrays(FLUIDS["air"], nn).items():
+                self.set_input_defaults(name, val=value, units=VARIABLES[name][2])

@@ -27,9 +27,9 @@ def clear_model_cache():
 
 
 def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_form, correction, input_mode,
-                  on_infeasible, thrust_target, section_point, ideal_loading):
+                  on_infeasible, thrust_target, section_point, ideal_loading, use_atmosphere):
     key = (num_nodes, num_radial, num_blades, id(polar), loss_model, chord_form, correction, input_mode,
-           on_infeasible, thrust_target, section_point, ideal_loading)
+           on_infeasible, thrust_target, section_point, ideal_loading, use_atmosphere)
     hit = _PROBLEM_CACHE.get(key)
     # id() can be reused after an object dies; the stored reference proves it is the same polar.
     if hit is not None and hit[0] is polar:
@@ -38,7 +38,7 @@ def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_fo
     group = BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades, polar=polar,
                       loss_model=loss_model, chord_form=chord_form, root_chord_correction=correction,
                       input_mode=input_mode, on_infeasible=on_infeasible, thrust_target=thrust_target,
-                      section_point=section_point, ideal_loading=ideal_loading)
+                      section_point=section_point, ideal_loading=ideal_loading, use_atmosphere=use_atmosphere)
     prob = om.Problem(group, reports=False)
     prob.setup(check=False)
     prob.final_setup()
@@ -50,7 +50,7 @@ def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_fo
 
 def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", loss_model="tip_hub",
                  chord_form="thrust", root_chord_correction=None, input_mode="v_axial", on_infeasible="raise",
-                 thrust_target=False, section_point="reference", ideal_loading="paper"):
+                 thrust_target=False, section_point="reference", ideal_loading="paper", use_atmosphere=True):
     """The cached, set-up BILD problem :func:`~bild_mdo.results.design.design_rotor` uses for this configuration.
 
     For users who want OpenMDAO access (totals, recorders) to the same model;
@@ -68,8 +68,9 @@ def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", l
         input ``thrust_target`` (N) instead of ``ref_chord``, which becomes an output).  With ``on_infeasible='flag'``
         the run never fails for an infeasible design: read the output ``feasible``
         and ``prob.model.feasibility`` (the reasons) after ``run_model``.
-    section_point, ideal_loading
-        Options of :class:`~bild_mdo.bild.BILDGroup` too: each value has its own cached problem.
+    section_point, ideal_loading, use_atmosphere
+        Options of :class:`~bild_mdo.bild.BILDGroup` too: each value has its own cached problem
+        (``use_atmosphere=False``: set ``rho``, ``mu``, ``speed_of_sound`` instead of ``altitude``).
 
     Returns
     -------
@@ -80,4 +81,4 @@ def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", l
     return _bild_problem(validation.integer("num_nodes", num_nodes), validation.integer("num_radial", num_radial),
                          validation.integer("num_blades", num_blades), polar, loss_model, chord_form,
                          root_chord_correction, input_mode, on_infeasible,
-                         thrust_target, section_point, ideal_loading)
+                         thrust_target, section_point, ideal_loading, bool(use_atmosphere))

@@ -6,6 +6,7 @@ import numpy as np
 from bild_mdo import validation
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, figure_file, output_file
+from bild_mdo.fluid import FLUID_HELP, fluid_from_text
 from bild_mdo.io.files import read_geometry
 from bild_mdo.plots.curves import plot_performance_curves
 from bild_mdo.results.off_design import off_design_sweep
@@ -16,7 +17,8 @@ HELP = "BEM off-design analysis of a blade geometry file over J, airspeed, rpm o
 DESCRIPTION = (
     "Analyse a fixed blade (a CSV, JSON or QPROP file as written by 'bild-mdo design', or any QPROP propeller "
     "file) with BEM over a range of advance ratios J = V/(nD) [-] or of airspeeds [m/s] at fixed rpm, of rotor "
-    "speeds [rpm] at fixed axial velocity [m/s], or of collective pitches [deg] (alone: at the design point; with a J or rpm sweep: "
+    "speeds [rpm] at fixed axial velocity [m/s], or of collective pitches [deg] (alone: at the design point; with a "
+    "J, airspeed or rpm sweep: "
     "every pitch at every point), in one vectorised run.  Prints T [N], Q [N m], P [kW], eta, FM, C_T, C_Q, C_P "
     "and the maximum-efficiency point.")
 
@@ -42,6 +44,8 @@ def add_analyze_arguments(parser):
                              "START to STOP in N points, at --at-rpm")
     parser.add_argument("--altitude", type=float, default=None, metavar="H",
                         help="ISA altitude [m] (default: the file's design altitude, else 0)")
+    parser.add_argument("--fluid", default=None, metavar="FLUID",
+                        help=FLUID_HELP + " (default: the fluid the file keeps, else the ISA)")
     parser.add_argument("--airfoil", default=None, metavar="AIRFOIL",
                         help=AIRFOIL_HELP + " (default: the airfoil the file carries: the JSON's polar, the polar "
                                             "file named in a CSV or QPROP file, else its airfoil name; for a "
@@ -112,7 +116,8 @@ def run_analyze(args, out):
     geometry = read_geometry(args.geometry, design=args.design, load_polar=polar is None)
     count = points.size * (1 if pitch is None else pitch.size)
     validation.memory_bound("sweep points", count, geometry.num_radial, hint="use fewer points")
-    kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=polar)
+    fluid = None if args.fluid is None else fluid_from_text(args.fluid)
+    kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=polar, fluid=fluid)
     if pitch is not None:
         kwargs["collective_pitch"] = np.radians(pitch)
     if args.advance_ratio is not None:

@@ -11,9 +11,12 @@ from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
+from bild_mdo.io.blade_3d import DEFAULT_STACKING, LIBRARIES, require, section_coordinates, write_step, write_stl
+from bild_mdo.io.geometry import LENGTH_UNITS
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade
-from bild_mdo.results.design import design_rotor
+from bild_mdo.fluid import FLUID_HELP, fluid_from_text
+from bild_mdo.results.design import UnloadedStationsWarning, design_rotor
 
 #: One-line help of the subcommand.
 HELP = "design ideal rotor blades with the BILD method (paper Alg. 1)"
@@ -45,6 +48,7 @@ def add_design_arguments(parser):
                        help="advance ratio J = V/(nD) [-], instead of --v-axial")
     for option, default, metavar, text in _BATCH_OPTIONS:
         parser.add_argument(option, type=float, nargs="+", default=default, metavar=metavar, help=text)
+    parser.add_argument("--fluid", default=None, metavar="FLUID", help=FLUID_HELP)
     parser.add_argument("--num-blades", type=int, default=3, metavar="B", help="number of blades B [-]")
     parser.add_argument("--airfoil", default="naca4412", metavar="AIRFOIL",
                         help=AIRFOIL_HELP + "; the geometry files carry it (JSON embeds the polar, CSV and QPROP "
@@ -70,6 +74,27 @@ def add_design_arguments(parser):
     out.add_argument("--json", metavar="FILE", help="write geometry, performance and distributions as JSON")
     out.add_argument("--qprop", metavar="FILE", help="write a QPROP propeller file (r, c in m; beta in deg)")
     out.add_argument("--plot", metavar="FILE.png", help="write planform and twist as PNG (needs matplotlib)")
+    out.add_argument("--stl", metavar="FILE", help="write the blade as a closed STL surface for CAD or 3D printing "
+                     "(a batch writes FILE_<i>.stl per design)")
+    out.add_argument("--step", metavar="FILE", help="write the blade as a STEP solid for CAD (needs OpenCascade: "
+                     f"{LIBRARIES['step'][1]})")
+    blade = parser.add_argument_group(
+        "3D blade (--stl, --step)",
+        "x is the rotation axis, positive in the thrust direction; z is the blade's pitch-change axis, radial "
+        "(z = r, hub to tip); y completes the right-handed frame.  The blade turns positively about +x (a "
+        "right-hand propeller, clockwise seen from behind): leading edge towards -y, suction side towards +x; "
+        "mirror y for the other hand.  "
+        "Each section's chord line crosses the z axis at --stacking and is twisted about it; the blade runs from "
+        "hub to tip radius (end stations' chord and twist), with flat end caps and no hub.")
+    blade.add_argument("--section", metavar="AIRFOIL", help="section shape: a NACA 4- or 5-digit designation or a "
+                       "Selig coordinates file (default: --airfoil, when it is one of these)")
+    blade.add_argument("--stacking", type=float, default=DEFAULT_STACKING, metavar="X",
+                       help="chord fraction of each section on the pitch-change axis [-] (default 0.25, the "
+                            "quarter chord)")
+    blade.add_argument("--all-blades", action="store_true", help="write all B blades, turned about x by 360/B deg "
+                       "(default: one blade along +z)")
+    blade.add_argument("--cad-units", choices=tuple(LENGTH_UNITS), default="mm",
+                       help="length unit of the STL and STEP files (STL carries none; slicers read mm)")
     return parser
 
 
@@ -102,10 +127,31 @@ def _zero_chord_message(result):
     stations = np.flatnonzero(chord[first] <= 0.0)
     label = (f"design {first}" + (f" (and {bad.size - 1} more)" if bad.size > 1 else "")) if result.is_batch \
         else "the design"
+    at_tip = stations[-1] == chord.shape[1] - 1 and np.all(np.diff(stations) == 1)
+    why = ("so the blade ends before the tip radius its tip loss assumes" if at_tip else
+           "and a blade file needs a chord at every station (a BEM analysis or a 3D blade has none there)")
     return (f"{label} has zero chord at {stations.size} of {chord.shape[1]} stations (r = "
             f"{radii[first, stations[0]]:.4g} ... {radii[first, stations[-1]]:.4g} m): the ideal load vanishes "
-            "there, so the blade ends before the tip radius its tip loss assumes; raise --ref-chord or lower "
-            "--radius")
+            f"there, {why}; raise --ref-chord or --thrust, or lower --radius")
+
+
+def _blade_options(args):
+    """The options of ``--stl``/``--step``, checked before any work (libraries, stacking, section); None without."""
+    if not (args.stl or args.step):
+        return None
+    for option in ("stl", "step"):
+        if getattr(args, option):
+            require(option)
+    validation.in_range("--stacking", args.stacking, 0.0, 1.0, ndim=(0,))
+    section = args.section or args.airfoil
+    try:
+        section_coordinates(section)
+    except ValueError as err:
+        if args.section:
+            raise ValueError(f"--section: {err}") from None
+        raise ValueError(f"--stl/--step need the section shape, and --airfoil {args.airfoil!r} gives none; add "
+                         "--section with a NACA designation (naca4412) or a Selig coordinates file") from None
+    return {"airfoil": section, "stacking": args.stacking, "all_blades": args.all_blades, "units": args.cad_units}
 
 
 def run_design(args, out):
@@ -129,14 +175,22 @@ def run_design(args, out):
     count = validation.batch_size(lengths)
     validation.memory_bound("designs", count, num_radial, hint="use fewer designs or --num-radial")
     files = {"--csv": output_file("--csv", args.csv), "--json": output_file("--json", args.json),
-             "--qprop": batch_files("--qprop", args.qprop, count), "--plot": figure_file("--plot", args.plot)}
+             "--qprop": batch_files("--qprop", args.qprop, count), "--plot": figure_file("--plot", args.plot),
+             "--stl": batch_files("--stl", args.stl, count), "--step": batch_files("--step", args.step, count)}
+    blade = _blade_options(args)
+    fluid = None if args.fluid is None else fluid_from_text(args.fluid)
+    if fluid is not None and np.any(np.asarray(sizing["altitude"]) != 0.0):
+        raise ValueError("give either --altitude (the ISA) or --fluid, not both")
     polar = airfoil_polar("--airfoil", args.airfoil)
-    result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=polar,
-                          num_radial=num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
-                          root_chord_correction=args.root_chord_correction, section_point=args.section_point,
-                          ideal_loading=args.ideal_loading)
+    with warnings.catch_warnings():
+        # The command says what is wrong with zero-chord stations itself (below), in its own words.
+        warnings.simplefilter("ignore", UnloadedStationsWarning)
+        result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=polar,
+                              num_radial=num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
+                              root_chord_correction=args.root_chord_correction, section_point=args.section_point,
+                              ideal_loading=args.ideal_loading, fluid=fluid)
     problem = _zero_chord_message(result)
-    if problem and (files["--csv"] or files["--json"] or files["--qprop"]):
+    if problem and any(files[option] for option in ("--csv", "--json", "--qprop", "--stl", "--step")):
         raise ValueError(f"{problem} (no geometry file written)")
     if problem:
         warnings.warn(problem, stacklevel=1)
@@ -153,6 +207,8 @@ def run_design(args, out):
         written.append(result.to_json(files["--json"]))
     for design, target in zip(result, files["--qprop"]):
         written.append(write_qprop(target, design))
+    for writer, option in ((write_stl, "--stl"), (write_step, "--step")):
+        written += [writer(target, design, **blade) for design, target in zip(result, files[option])]
     if files["--plot"]:
         plot_blade(result, files["--plot"])
         written.append(files["--plot"])

@@ -33,7 +33,7 @@ from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.airfoil.serialize import polar_from_dict, polar_to_dict
 from bild_mdo.airfoil.text import sweep_polar
-from bild_mdo.io.geometry import not_text, read_text
+from bild_mdo.io.file_checks import not_text, read_text
 
 __all__ = ["POLAR_FILE_FORMAT", "airfoil_text", "check_airfoil_file", "polar_description", "polar_file_for",
            "read_polar_file", "resolve_airfoil", "write_polar_file"]

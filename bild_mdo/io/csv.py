@@ -21,11 +21,11 @@ one row per station::
 ``dr`` is the width of the annulus each station stands for (the cells
 between the midpoints of neighbouring stations, bounded by hub and tip, that
 the BEM analysis integrates over); the widths tile hub to tip, so a file
-that lost rows is refused (:func:`~bild_mdo.io.geometry.check_stations`).
+that lost rows is refused (:func:`~bild_mdo.io.file_checks.check_stations`).
 The first line gives the format version: a newer file than this reader
 reads is refused; a format-1 file (no ``dr`` column) or a hand-made table
 has its end stations checked instead (the gap to hub and tip at most one
-station spacing, :func:`~bild_mdo.io.geometry.check_end_gaps`).
+station spacing, :func:`~bild_mdo.io.file_checks.check_end_gaps`).
 
 The ``polar_file`` line is written for a polar that its name does not
 rebuild (tables, a spanwise set): the polar file next to the CSV
@@ -46,9 +46,10 @@ import numpy as np
 
 from bild_mdo.io.airfoil import (needs_polar_file, polar_description, polar_file_for, read_polar_file,
                                  write_polar_file)
-from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, FileMetadata,
-                                  as_geometry, check_stations, check_version, design_point_key, file_errors,
-                                  format_number, read_text, split_key, twist_to_radians)
+from bild_mdo.io.file_checks import (FileMetadata, check_stations, check_version, file_errors, read_text,
+                                     twist_to_radians)
+from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, as_geometry, design_point_key,
+                                  format_number, split_key)
 
 # The first line: '# bild-mdo rotor geometry, format 2'.
 _FORMAT_LINE = re.compile(r"^#\s*" + re.escape(FORMAT_NAME) + r"\s*,\s*format\s+(?P<version>\S+)\s*$")

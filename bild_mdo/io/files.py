@@ -69,7 +69,7 @@ def read_geometry(path, fmt=None, design=0, load_polar=True):
         One line, if it cannot be read as a geometry or would lie: stations
         that do not tile hub to tip (a cut file), a format version newer than
         this reader, a twist in rad that looks like degrees, a file that is not
-        text (:func:`~bild_mdo.io.geometry.check_stations`).
+        text (:func:`~bild_mdo.io.file_checks.check_stations`).
     """
     path = Path(path)
     if path.is_dir():

@@ -19,7 +19,7 @@ and ``"distributions"``) are ignored by the reader.
 The reader refuses a file of a newer ``"version"`` than it reads, stations
 whose widths do not tile hub to tip, and, for a version-1 file (no
 ``"dr [m]"``), end stations farther from hub or tip than one station spacing
-(:func:`~bild_mdo.io.geometry.check_stations`); a twist declared in rad whose
+(:func:`~bild_mdo.io.file_checks.check_stations`); a twist declared in rad whose
 values look like degrees is refused with that said.  A UTF-8 byte-order mark
 is skipped.
 """
@@ -32,9 +32,9 @@ import numpy as np
 
 from bild_mdo import validation
 from bild_mdo.io.airfoil import polar_description, polar_from_description
-from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, RotorGeometry,
-                                  as_geometry, check_stations, check_version, design_point_key, file_errors,
-                                  read_text, split_key, twist_to_radians, unit_key)
+from bild_mdo.io.file_checks import check_stations, check_version, file_errors, read_text, twist_to_radians
+from bild_mdo.io.geometry import (ANGLE_UNITS, FORMAT_NAME, FORMAT_VERSION, LENGTH_UNITS, RotorGeometry, as_geometry,
+                                  design_point_key, split_key, unit_key)
 
 #: What to do with a file without widths whose end stations are far from hub or tip.
 _FIX = "write the file again from the design (bild-mdo design --json), or give each station's width in a 'dr [m]' list"

@@ -36,10 +36,10 @@ next to it, :mod:`bild_mdo.io.airfoil`) sit in
 ``# bild-mdo: key [unit] = value`` comment lines, which QPROP skips; reading
 such a file drops the two extrapolated rows again, so the round trip returns
 the BILD stations, and checks them against the widths (a file that lost
-rows is refused, :func:`~bild_mdo.io.geometry.check_stations`).  A QPROP
+rows is refused, :func:`~bild_mdo.io.file_checks.check_stations`).  A QPROP
 file from elsewhere is read with QPROP's meaning: the blade runs from the
 first station (the hub radius) to ``R``; its last station may be at most one
-station spacing from ``R`` (:func:`~bild_mdo.io.geometry.check_end_gaps`),
+station spacing from ``R`` (:func:`~bild_mdo.io.file_checks.check_end_gaps`),
 else its annulus would stretch over blade the file does not describe.
 
 The airfoil lines are fitted to the polar (a spanwise set: its blend at
@@ -70,8 +70,8 @@ from bild_mdo.atmosphere import isa
 from bild_mdo.constants import angular_velocity
 from bild_mdo.io.airfoil import (needs_polar_file, polar_description, polar_file_for, read_polar_file,
                                  resolve_airfoil, write_polar_file)
-from bild_mdo.io.geometry import (FORMAT_VERSION, FileMetadata, as_geometry, check_stations, design_point_key,
-                                  file_errors, format_number, read_text)
+from bild_mdo.io.file_checks import FileMetadata, check_stations, file_errors, read_text
+from bild_mdo.io.geometry import FORMAT_VERSION, as_geometry, design_point_key, format_number
 
 #: Half width (in cl) of the band about the fitted lift line that counts as attached flow.
 LINEAR_LIFT_BAND = 0.05

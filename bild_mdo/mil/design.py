@@ -9,6 +9,7 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
+from bild_mdo.fluid import resolve_fluid
 from bild_mdo.mil.kernel import LOSS_FORMS
 from bild_mdo.mil.mil_group import MILGroup
 from bild_mdo.utils.options import DEFAULT_NUM_RADIAL
@@ -39,16 +40,17 @@ class MILDesign(NamedTuple):
 
 
 @functools.lru_cache(maxsize=8)
-def _problem(num_nodes, num_radial, num_blades, design_for, loss_form):
+def _problem(num_nodes, num_radial, num_blades, design_for, loss_form, use_atmosphere=True):
     prob = om.Problem(MILGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades,
-                               design_for=design_for, loss_form=loss_form), reports=False)
+                               design_for=design_for, loss_form=loss_form, use_atmosphere=use_atmosphere),
+                      reports=False)
     prob.setup()
     prob.final_setup()
     return prob
 
 
 def design_mil(thrust=None, *, v_axial, rpm, radius, hub_radius, cl_star, cd_star, alpha_star, num_blades=2,
-               altitude=0.0, power=None, num_radial=DEFAULT_NUM_RADIAL, loss_form="adkins_liebeck"):
+               altitude=0.0, power=None, num_radial=DEFAULT_NUM_RADIAL, loss_form="adkins_liebeck", fluid=None):
     """Design minimum-induced-loss propellers for a thrust (or a power) target.
 
     Per-design arguments are scalars or 1-D sequences of one common length
@@ -68,6 +70,9 @@ def design_mil(thrust=None, *, v_axial, rpm, radius, hub_radius, cl_star, cd_sta
         Number of blades.
     altitude : float or array_like
         Geometric altitude (m) for the ISA.
+    fluid : Fluid, str or (rho, mu, speed_of_sound), optional
+        Any fluid instead of the ISA (:mod:`bild_mdo.fluid`: ``'water'``,
+        ``'seawater'``, ``'air'`` or your own); then ``altitude`` must stay 0.
     power : float or array_like, optional
         Shaft power target (W, > 0) instead of ``thrust``.
     num_radial : int
@@ -98,15 +103,21 @@ def design_mil(thrust=None, *, v_axial, rpm, radius, hub_radius, cl_star, cd_sta
         "cl_star": validation.positive("cl_star", cl_star),
         "cd_star": validation.non_negative("cd_star", cd_star),
         "alpha_star": validation.real_array("alpha_star", alpha_star, units="rad"),
-        "altitude": validation.in_range("altitude", altitude, 0.0, MAX_ALTITUDE, units="m"),
         f"design_{design_for}": validation.positive(design_for, target, units="N" if power is None else "W"),
     }
     validation.smaller("hub_radius", values["hub_radius"], "radius", values["radius"])
     num_blades = validation.integer("num_blades", num_blades, minimum=1)
     num_radial = validation.integer("num_radial", num_radial, minimum=1)
     loss_form = validation.choice("loss_form", loss_form, LOSS_FORMS)
+    if fluid is None:
+        values["altitude"] = validation.in_range("altitude", altitude, 0.0, MAX_ALTITUDE, units="m")
+    else:
+        fluid = resolve_fluid(fluid)
+        if np.any(np.asarray(altitude) != 0.0):
+            raise ValueError("give either altitude [m] (the ISA) or fluid, not both")
+        values["rho"] = np.asarray(fluid.rho)  # MIL's relations need no viscosity
     nn = validation.batch_size({name: value.size for name, value in values.items() if value.ndim == 1})
-    prob = _problem(nn, num_radial, num_blades, design_for, loss_form)
+    prob = _problem(nn, num_radial, num_blades, design_for, loss_form, fluid is None)
     for name, value in values.items():
         prob.set_val(name, np.broadcast_to(value, (nn,)))
     prob.run_model()

@@ -3,6 +3,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.atmosphere import AtmosphereComp
+from bild_mdo.fluid import FLUIDS
 from bild_mdo.bem.stations import StationsComp
 from bild_mdo.mil.blade import MILBladeComp
 from bild_mdo.mil.displacement_velocity import DESIGN_FOR, DisplacementVelocityComp
@@ -55,7 +56,8 @@ class MILGroup(om.Group):
 
     Inputs
     ------
-    v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), hub_radius[nn] (m), altitude[nn] (m)
+    v_axial[nn] (m/s), rpm[nn] (rpm), radius[nn] (m), hub_radius[nn] (m), altitude[nn] (m) (with
+    ``use_atmosphere=False`` instead rho[nn] (kg/m**3) of any fluid: MIL needs no viscosity)
         Operating point.
     design_thrust[nn] (N) or design_power[nn] (W)
         Target.
@@ -78,6 +80,8 @@ class MILGroup(om.Group):
         declare_size_options(self.options)
         declare_design_options(self.options)
         self.options.declare("design_for", default="thrust", values=DESIGN_FOR, desc="target: thrust or power")
+        self.options.declare("use_atmosphere", types=bool, default=True,
+                             desc="rho from the ISA at input altitude (else rho is an input: any fluid)")
         # User stations, passed to StationsComp; None for the midpoints of equal annuli.
         for name, what in (("radial_fractions", "radii r/R"), ("width_fractions", "widths dr/R")):
             self.options.declare(name, default=None, allow_none=True, desc=f"user station {what} or None")
@@ -91,8 +95,8 @@ class MILGroup(om.Group):
         point = ["v_axial", "radius", "cl_star", "cd_star"]
         stations = ["speed_ratio", "radius_fraction", "width_fraction"]
         # (name, component, promoted inputs, promoted outputs), in data-flow order.
-        chain = (
-            ("atmosphere", AtmosphereComp(num_nodes=nn), ["altitude"], ["rho", "mu"]),
+        atmosphere = ("atmosphere", AtmosphereComp(num_nodes=nn), ["altitude"], ["rho", "mu"])
+        chain = ((atmosphere,) if opts["use_atmosphere"] else ()) + (
             ("stations", StationsComp(**size, radial_fractions=opts["radial_fractions"],
                                       width_fractions=opts["width_fractions"]),
              ["radius", "hub_radius"], ["radii", "dr"]),
@@ -106,9 +110,11 @@ class MILGroup(om.Group):
         )
         for name, component, inputs, outputs in chain:
             self.add_subsystem(name, component, promotes_inputs=inputs, promotes_outputs=outputs)
+        # MIL's relations use the density only (its airfoil point is given, not looked up at a Reynolds number).
+        fluid = {"altitude": (0.0, "m")} if opts["use_atmosphere"] else {"rho": (FLUIDS["air"].rho, "kg/m**3")}
 
         defaults = {"v_axial": (50.0, "m/s"), "rpm": (2400.0, "rpm"), "radius": (0.875, "m"),
-                    "hub_radius": (0.1, "m"), "altitude": (0.0, "m"),
+                    "hub_radius": (0.1, "m"), **fluid,
                     target: (1000.0, "N" if target == "design_thrust" else "W"),
                     "alpha_star": (np.radians(4.0), "rad"), "cl_star": (0.7, None), "cd_star": (0.01, None)}
         for name, (value, units) in defaults.items():

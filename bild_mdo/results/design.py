@@ -37,6 +37,7 @@ from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.variants import SECTION_POINTS
 from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
+from bild_mdo.fluid import fluid_arrays, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.results.design_analysis import analyze_designs
 from bild_mdo.results.design_result import (DISTRIBUTION_UNITS, DISTRIBUTIONS, INPUT_UNITS, NODE_OUTPUT_UNITS,
@@ -53,12 +54,13 @@ class UnloadedStationsWarning(UserWarning):
     """A design leaves stations unloaded (zero chord): its ideal loading carries nothing there."""
 
 
-def _check_tip_mach(values, input_mode):
+def _check_tip_mach(values, input_mode, fluid=None):
     """ValueError if the helical tip Mach number of some design exceeds :data:`MAX_TIP_MACH`."""
     omega_r = values["rpm"] * (RPM_TO_REV_PER_S * 2.0 * np.pi) * values["radius"]
     speed = values[input_mode] * (values["rpm"] * RPM_TO_REV_PER_S * 2.0 * values["radius"]
                                   if input_mode == "advance_ratio" else 1.0)
-    tip_mach = np.hypot(speed, omega_r) / isa(values["altitude"], derivatives=False).speed_of_sound
+    sound = isa(values["altitude"], derivatives=False).speed_of_sound if fluid is None else fluid.speed_of_sound
+    tip_mach = np.hypot(speed, omega_r) / sound
     bad = np.flatnonzero(tip_mach > MAX_TIP_MACH)
     if bad.size:
         where = f" (design {int(bad[0])})" if tip_mach.size > 1 else ""
@@ -136,7 +138,7 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
                  ref_radius_ratio=0.5, ref_chord=None, altitude=0.0, num_blades=3, airfoil="naca4412",
                  num_radial=30, loss_model="tip_hub", chord_form="thrust", root_chord_correction=None,
                  on_infeasible="raise", thrust=None, section_point="reference", ideal_loading="paper",
-                 bem_analysis=True):
+                 bem_analysis=True, fluid=None):
     """Design the ideal rotor(s) for given operating points with the BILD method (paper Alg. 1).
 
     Scalars give one design; lists or 1-D arrays (broadcast against each
@@ -217,6 +219,11 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
         ``bem_figure_of_merit``, shown by :meth:`DesignResult.summary` beside
         the design's own numbers with the difference and why they can differ.
         False leaves them out (a sizing loop that needs only the design).
+    fluid : Fluid, str or (rho, mu, speed_of_sound), optional
+        Any fluid instead of the ISA at ``altitude`` (:mod:`bild_mdo.fluid`:
+        ``'water'``, ``'seawater'``, ``'air'`` or your own; then ``altitude``
+        must stay 0).  The result keeps it (``result.fluid``) and so do its
+        geometry files, whose analysis then runs in the same fluid.
 
     Returns
     -------
@@ -248,12 +255,16 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     if root_chord_correction is not None:
         root_chord_correction = float(validation.positive("root_chord_correction", root_chord_correction,
                                                           hint="k of Eq. (32), or None", ndim=(0,)))
+    if fluid is not None:
+        fluid = resolve_fluid(fluid)
+        if np.any(np.asarray(altitude, dtype=float) != 0.0):
+            raise ValueError("give either altitude [m] (the ISA) or fluid, not both")
     values = _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius_ratio, ref_chord,
                              altitude, thrust)
     is_batch = any(arr.ndim == 1 for arr in values.values())
     nn = validation.batch_size({name: arr.size for name, arr in values.items() if arr.ndim == 1})
     values = {name: np.broadcast_to(arr, (nn,)).astype(float) for name, arr in values.items()}
-    _check_tip_mach(values, input_mode)
+    _check_tip_mach(values, input_mode, fluid)
     validation.memory_bound("designs", nn, num_radial, hint="design in smaller batches or with fewer stations")
 
     config = dict(num_nodes=nn, num_radial=num_radial, num_blades=num_blades, loss_model=loss_model,
@@ -262,10 +273,16 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     # resolve_airfoil gives one polar object per airfoil text in a process, so bild_problem (keyed by the
     # polar) reuses the set-up problem on repeated calls.
     polar = resolve_airfoil(airfoil)
-    prob = bild_problem(airfoil=polar, thrust_target=thrust is not None, ideal_loading=ideal_loading, **config)
+    prob = bild_problem(airfoil=polar, thrust_target=thrust is not None, ideal_loading=ideal_loading,
+                        use_atmosphere=fluid is None, **config)
     polar = prob.model.options["polar"]
     for name, arr in values.items():
+        if name == "altitude" and fluid is not None:
+            continue
         prob.set_val(name, arr, units="N" if name == "thrust_target" else INPUT_UNITS[name])
+    if fluid is not None:
+        for name, arr in fluid_arrays(fluid, nn).items():
+            prob.set_val(name, arr)
     prob.run_model()
 
     infeasible = prob.model.feasibility.infeasible
@@ -297,12 +314,12 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
     ordered.update({name: values[name] for name in INPUT_UNITS})
     ordered.update({name: outputs[name] for name in NODE_OUTPUT_UNITS if name in outputs})
     if bem_analysis:
-        analysis, invalid = analyze_designs(values, outputs, ~infeasible, num_blades, polar, loss_model)
+        analysis, invalid = analyze_designs(values, outputs, ~infeasible, num_blades, polar, loss_model, fluid)
         ordered.update(analysis)
         ordered["bem_invalid_stations"] = np.where(infeasible, np.nan, invalid.astype(float))
     result = DesignResult(values=ordered, num_blades=num_blades, airfoil=getattr(polar, "name", type(polar).__name__),
                           loss_model=loss_model, chord_form=chord_form,
                           root_chord_correction=root_chord_correction, polar=polar, is_batch=True,
                           feasible=~infeasible, status=prob.model.feasibility.status(),
-                          section_point=section_point, ideal_loading=ideal_loading)
+                          section_point=section_point, ideal_loading=ideal_loading, fluid=fluid)
     return result if is_batch else result[0]

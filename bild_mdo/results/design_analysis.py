@@ -17,7 +17,8 @@ analysis does:
 Stations left unloaded (zero chord) carry nothing in the design.  The analysis
 needs a blade at every station, so they get a token chord (the reference
 chord, so that their Reynolds number stays of the design's order and the polar
-does not warn about it) and are left out of its sums: the annuli of the BEM model are independent, so this is the analysis of
+does not warn about it) and are left out of its sums: the annuli of the BEM
+model are independent, so this is the analysis of
 the blade without them.  With ``section_point='local'`` each station runs at
 its own Reynolds number in the design too, and the two agree to round-off.
 :func:`analyze_designs` analyses a whole batch in one vectorised run of a
@@ -32,6 +33,7 @@ import openmdao.api as om
 
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.performance import rotor_performance
+from bild_mdo.fluid import fluid_arrays
 
 #: Per-design values of the analysis in a :class:`~bild_mdo.results.design_result.DesignResult`: name -> units
 #: (the BEM analysis's ``thrust``, ``torque``, ``power``, ``efficiency``, ``figure_of_merit``).
@@ -43,15 +45,16 @@ _CACHE = collections.OrderedDict()
 _CACHE_SIZE = 4
 
 
-def _problem(num_nodes, num_radial, num_blades, polar, loss_model):
-    key = (num_nodes, num_radial, num_blades, id(polar), loss_model)
+def _problem(num_nodes, num_radial, num_blades, polar, loss_model, use_atmosphere):
+    key = (num_nodes, num_radial, num_blades, id(polar), loss_model, use_atmosphere)
     hit = _CACHE.get(key)
     if hit is not None and hit[0] is polar:
         _CACHE.move_to_end(key)
         return hit[1]
     # BILD's stations are the midpoints of equal annuli from hub to tip, the analysis group's default.
     prob = om.Problem(BEMAnalysisGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades,
-                                       polar=polar, loss_model=loss_model, on_invalid="ignore"), reports=False)
+                                       polar=polar, loss_model=loss_model, on_invalid="ignore",
+                                       use_atmosphere=use_atmosphere), reports=False)
     prob.setup(check=False)
     prob.final_setup()
     _CACHE[key] = (polar, prob)
@@ -60,12 +63,13 @@ def _problem(num_nodes, num_radial, num_blades, polar, loss_model):
     return prob
 
 
-def analyze_designs(values, outputs, feasible, num_blades, polar, loss_model):
+def analyze_designs(values, outputs, feasible, num_blades, polar, loss_model, fluid=None):
     """:data:`ANALYSIS_UNITS` of every design (NaN where infeasible) and the number of loaded stations of each
     design that the analysis finds outside the propeller flow state.
 
     ``values`` holds the designs' inputs (``v_axial``, ``rpm``, ``radius``, ``hub_radius_ratio``, ``altitude``,
-    ``ref_chord``, shape ``(nn,)``), ``outputs`` the BILD model's (``chord``, ``twist``, shape ``(nn, nr)``).
+    ``ref_chord``, shape ``(nn,)``), ``outputs`` the BILD model's (``chord``, ``twist``, shape ``(nn, nr)``);
+    ``fluid`` a :class:`~bild_mdo.fluid.Fluid` instead of the ISA at ``altitude``.
     """
     nn, nr = outputs["chord"].shape
     result = {name: np.full(nn, np.nan) for name in ANALYSIS_UNITS}
@@ -73,7 +77,7 @@ def analyze_designs(values, outputs, feasible, num_blades, polar, loss_model):
     at = np.flatnonzero(feasible)
     if at.size == 0:
         return result, invalid
-    prob = _problem(at.size, nr, num_blades, polar, loss_model)
+    prob = _problem(at.size, nr, num_blades, polar, loss_model, fluid is None)
     radius = values["radius"][at]
     chord = outputs["chord"][at]
     loaded = chord > 0.0
@@ -83,7 +87,11 @@ def analyze_designs(values, outputs, feasible, num_blades, polar, loss_model):
     prob.set_val("hub_radius", values["hub_radius_ratio"][at] * radius, units="m")
     prob.set_val("rpm", values["rpm"][at], units="rpm")
     prob.set_val("v_axial", values["v_axial"][at], units="m/s")
-    prob.set_val("altitude", values["altitude"][at], units="m")
+    if fluid is None:
+        prob.set_val("altitude", values["altitude"][at], units="m")
+    else:
+        for name, value in fluid_arrays(fluid, at.size).items():
+            prob.set_val(name, value)
     prob.run_model()
     dr = prob.get_val("dr", units="m")
     thrust = np.sum(np.where(loaded, prob.get_val("dthrust_dr", units="N/m") * dr, 0.0), axis=1)

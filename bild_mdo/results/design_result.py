@@ -14,6 +14,7 @@ from typing import ClassVar
 import numpy as np
 
 from bild_mdo.airfoil.polar import Polar
+from bild_mdo.fluid import Fluid, fluid_point
 from bild_mdo.bem.metrics import METRICS
 from bild_mdo.io.csv import write_csv
 from bild_mdo.io.geometry import RotorGeometry, unit_key
@@ -125,6 +126,10 @@ class DesignResult:
         ``'ok'`` where feasible, else why the design is infeasible.
     num_blades, airfoil, loss_model, chord_form, root_chord_correction, section_point, ideal_loading
         The configuration; ``polar`` is the Polar object used.
+    fluid : Fluid or None
+        The fluid of ``design_rotor(..., fluid=...)`` (:mod:`bild_mdo.fluid`); None for the ISA at
+        ``altitude`` (then ``altitude`` holds no meaning for a fluid design, and its geometry files keep
+        the fluid's ``rho``, ``mu`` and ``speed_of_sound`` instead).
 
     Notes
     -----
@@ -147,6 +152,7 @@ class DesignResult:
     status: np.ndarray | str = "ok"
     section_point: str = "reference"
     ideal_loading: str = "paper"
+    fluid: Fluid | None = None
 
     UNITS: ClassVar[dict] = {"radii": "m", "radial_fractions": None, **DISTRIBUTION_UNITS, **DERIVED_DISTRIBUTIONS,
                              **INPUT_UNITS, **NODE_OUTPUT_UNITS, **ANALYSIS_UNITS, "bem_invalid_stations": None}
@@ -244,7 +250,9 @@ class DesignResult:
                              radius=design.radius, hub_radius=design.hub_radius,
                              num_blades=design.num_blades, airfoil=design.airfoil,
                              loss_model=design.loss_model,
-                             design_point={name: design.values[name] for name in _GEOMETRY_POINT},
+                             design_point={**{name: design.values[name] for name in _GEOMETRY_POINT
+                                              if not (name == "altitude" and design.fluid is not None)},
+                                           **({} if design.fluid is None else fluid_point(design.fluid))},
                              name=f"bild-mdo design ({design.airfoil}, B={design.num_blades})", polar=design.polar)
 
     def _single(self, index):

@@ -38,6 +38,7 @@ from bild_mdo.bem.analyze import BEMResult, analyze_rotor
 from bild_mdo.bem.flow_states import INVALID_STATES, ON_INVALID, PROPELLER, BEMStateWarning, describe_invalid
 from bild_mdo.bem.metrics import METRICS
 from bild_mdo.constants import RPM_TO_REV_PER_S
+from bild_mdo.fluid import point_fluid, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.io.files import read_geometry
 from bild_mdo.io.geometry import RotorGeometry, as_geometry, unit_key
@@ -242,7 +243,7 @@ def _sweep_points(name, values, check, units):
 
 
 def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm=None, altitude=None,
-                     polar=None, loss_model=None, design=None, on_invalid="warn", collective_pitch=0.0):
+                     polar=None, loss_model=None, design=None, on_invalid="warn", collective_pitch=0.0, fluid=None):
     """BEM analysis of one fixed blade over a range of advance ratios, airspeeds, rotor speeds or collective pitches.
 
     All points run in one vectorised analysis.  A point whose analysis fails
@@ -274,6 +275,9 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
         Rotor speed (rpm) of an advance-ratio or pitch sweep; default the design's.
     altitude : float, optional
         ISA altitude (m); default the design's, else 0.
+    fluid : Fluid, str or (rho, mu, speed_of_sound), optional
+        Any fluid instead of the ISA (:mod:`bild_mdo.fluid`); default the fluid the geometry keeps (a design
+        made with ``fluid=``, or its file), else the ISA at ``altitude``.
     polar : Polar or str, optional
         Default: the polar the geometry carries (a design's polar, a file's),
         its airfoil name, or its QPROP airfoil lines.  Any text
@@ -320,6 +324,9 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     geom = _blade(geometry, design)
     point = geom.design_point
     polar = _default_polar(geom) if polar is None else resolve_airfoil(polar)
+    if fluid is not None and altitude is not None:
+        raise ValueError("give either altitude [m] (the ISA) or fluid, not both")
+    fluid = resolve_fluid(fluid) if fluid is not None else (point_fluid(point) if altitude is None else None)
     altitude = point.get("altitude", 0.0) if altitude is None else float(validation.real_array("altitude", altitude,
                                                                                                units="m", ndim=(0,)))
     loss_model = geom.loss_model if loss_model is None else loss_model
@@ -359,7 +366,9 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
 
     def run(points, mode):
         return analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, speeds[points],
-                             velocities[points], geom.num_blades, polar, altitude=altitude, loss_model=loss_model,
+                             velocities[points], geom.num_blades, polar,
+                             altitude=0.0 if fluid is not None else altitude,
+                             fluid=fluid, loss_model=loss_model,
                              radii=geom.radii, dr=geom.dr, on_invalid=mode, collective_pitch=pitch[points])
 
     r_over_r = np.broadcast_to(np.asarray(geom.radii) / geom.radius, (count, np.size(geom.radii)))

@@ -100,7 +100,7 @@ def status_footer(result, noun):
 _SINGLE_DESIGN_ROWS = (
     ("operating point", None, None), ("axial velocity V_x", "v_axial", "m/s"),
     ("advance ratio J = V/(nD)", "advance_ratio", "-"), ("rotor speed", "rpm", "rpm"), ("altitude", "altitude", "m"),
-    ("air density rho", "rho", "kg/m^3"),
+    ("density rho", "rho", "kg/m^3"), ("dynamic viscosity mu", "mu", "Pa s"),
     ("geometry", None, None), ("tip radius R", "radius", "m"), ("hub radius", "hub_radius", "m"),
     ("reference radius r_ref", "ref_radius", "m"), ("reference chord c_ref", "ref_chord", "m"),
     ("solidity sigma_r", "solidity", "-"),
@@ -172,6 +172,8 @@ def single_design_table(design):
     for label, quantity, units in _SINGLE_DESIGN_ROWS:
         if quantity is None:
             lines.append(f"{label}:" if label != "reference airfoil point" else f"section point ({_method(design)}):")
+        elif quantity == "altitude" and getattr(design, "fluid", None) is not None:
+            lines.append(f"  {'fluid (instead of the ISA)':<32s} {design.fluid.name:>14s}")
         elif isinstance(quantity, tuple):
             cl_star, cd_star = (getattr(design, name) for name in quantity)
             text = f"{_number(cl_star, '.4f')}, {_number(cd_star, '.5f')}"
@@ -197,8 +199,9 @@ def analysis_rows(design, useful):
              if useful[name]]
     for label, name, units, scale in rows:
         analysed, designed = float(design.values["bem_" + name]), float(design.values[name])
+        difference = round(100.0 * (analysed / designed - 1.0), 4) + 0.0  # no "-0.0000"
         lines.append(f"  {label:<32s} {analysed * scale:>14.6g} {units}  "
-                     f"({round(100.0 * (analysed / designed - 1.0), 4) + 0.0:+.4f} % against the design's {designed * scale:.6g})")
+                     f"({difference:+.4f} % against the design's {designed * scale:.6g})")
     lines.append(f"  {analysis_reason(design)}")
     invalid = int(design.values.get("bem_invalid_stations", 0))
     if invalid:

@@ -2,8 +2,8 @@
 import numpy as np
 import pytest
 
-from bild_mdo.io.geometry import (FORMAT_VERSION, RotorGeometry, as_geometry, check_stations, check_version,
-                                  station_widths, twist_to_radians)
+from bild_mdo.io.file_checks import check_stations, check_version, twist_to_radians
+from bild_mdo.io.geometry import FORMAT_VERSION, RotorGeometry, as_geometry, station_widths
 
 BLADE = dict(radii=[0.3, 0.6, 0.9], chord=[0.1, 0.09, 0.05], twist=[0.4, 0.3, 0.2], radius=1.0, hub_radius=0.2,
              num_blades=2)
