@@ -10,6 +10,7 @@ from bild_mdo.fluid import FLUID_HELP, fluid_from_text
 from bild_mdo.io.files import read_geometry
 from bild_mdo.plots.curves import plot_performance_curves
 from bild_mdo.results.off_design import off_design_sweep
+from bild_mdo.results.thrust_trim import TRIM_VARIABLES
 
 #: One-line help of the subcommand.
 HELP = "BEM off-design analysis of a blade geometry file over J, airspeed, rpm or collective pitch"
@@ -35,6 +36,11 @@ def add_analyze_arguments(parser):
                         help="collective pitch [deg] added to the twist, from START to STOP in N points: alone, a "
                              "pitch sweep at the design point; with --advance-ratio or --rpm, every pitch at every "
                              "point (one value: START STOP 1)")
+    parser.add_argument("--thrust", type=float, default=None, metavar="T",
+                        help="trim every point to this thrust [N] by --trim (alone: at the design point)")
+    parser.add_argument("--trim", choices=TRIM_VARIABLES, default="collective_pitch",
+                        help="what --thrust sets: the collective pitch (default; with a J, airspeed or rpm sweep) "
+                             "or the rotor speed (with an airspeed sweep or at the design point)")
     parser.add_argument("--at-rpm", type=float, default=None, metavar="RPM",
                         help="rotor speed [rpm] of a J or airspeed sweep (default: the design rpm stored in the "
                              "file)")
@@ -97,9 +103,11 @@ def run_analyze(args, out):
     if args.advance_ratio is not None and v_axial is not None:
         raise ValueError("--advance-ratio fixes the airspeed by J and rpm (V = J n D): leave out --v-axial, or "
                          "sweep the airspeed with --v-axial START STOP N")
-    if args.advance_ratio is None and args.rpm is None and airspeeds is None and pitch is None:
+    if args.thrust is not None:
+        validation.positive("--thrust", args.thrust, units="N")
+    if args.advance_ratio is None and args.rpm is None and airspeeds is None and pitch is None and args.thrust is None:
         raise ValueError("give the sweep: --advance-ratio START STOP N, --v-axial START STOP N, --rpm START STOP N "
-                         "or --collective-pitch START STOP N")
+                         "or --collective-pitch START STOP N, or a trim: --thrust T")
     option, sweep = next(((name, value) for name, value in (("--advance-ratio", args.advance_ratio),
                                                              ("--v-axial", airspeeds), ("--rpm", args.rpm))
                           if value is not None), ("--rpm", None))
@@ -118,6 +126,8 @@ def run_analyze(args, out):
     validation.memory_bound("sweep points", count, geometry.num_radial, hint="use fewer points")
     fluid = None if args.fluid is None else fluid_from_text(args.fluid)
     kwargs = dict(altitude=args.altitude, loss_model=args.loss_model, polar=polar, fluid=fluid)
+    if args.thrust is not None:
+        kwargs.update(thrust=args.thrust, trim=args.trim)
     if pitch is not None:
         kwargs["collective_pitch"] = np.radians(pitch)
     if args.advance_ratio is not None:

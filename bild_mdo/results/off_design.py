@@ -25,7 +25,6 @@ Reynolds-independent :class:`~bild_mdo.airfoil.AnalyticPolar`; with the NACA
 from __future__ import annotations
 
 import dataclasses
-import re
 import warnings
 from pathlib import Path
 from typing import ClassVar
@@ -35,8 +34,8 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.bem.analyze import BEMResult, analyze_rotor
-from bild_mdo.bem.flow_states import INVALID_STATES, ON_INVALID, PROPELLER, BEMStateWarning, describe_invalid
-from bild_mdo.bem.metrics import METRICS
+from bild_mdo.bem.flow_states import ON_INVALID
+from bild_mdo.bem.metrics import METRICS, TipMachWarning
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.fluid import point_fluid, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
@@ -45,7 +44,8 @@ from bild_mdo.io.geometry import RotorGeometry, as_geometry, unit_key
 from bild_mdo.io.qprop import polar_from_qprop
 from bild_mdo.results import tables
 from bild_mdo.results.design import DesignResult
-from bild_mdo.utils.batches import isolate_failures
+from bild_mdo.results.point_analysis import analyze_points
+from bild_mdo.results.thrust_trim import TRIM_VARIABLES, out_of_reach, trim_points
 
 #: The operating point of each sweep point: name -> units.
 POINT_UNITS = {"advance_ratio": None, "v_axial": "m/s", "rpm": "rpm"}
@@ -243,7 +243,8 @@ def _sweep_points(name, values, check, units):
 
 
 def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm=None, altitude=None,
-                     polar=None, loss_model=None, design=None, on_invalid="warn", collective_pitch=0.0, fluid=None):
+                     polar=None, loss_model=None, design=None, on_invalid="warn", collective_pitch=0.0, fluid=None,
+                     thrust=None, trim="collective_pitch"):
     """BEM analysis of one fixed blade over a range of advance ratios, airspeeds, rotor speeds or collective pitches.
 
     All points run in one vectorised analysis.  A point whose analysis fails
@@ -296,6 +297,13 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
         ``advance_ratios`` or ``rpms``, every pitch at every point (the
         pitch varies slowest: one curve per pitch).
 
+    thrust : float, optional
+        Trim every point to this thrust (N, > 0) by ``trim`` (:mod:`bild_mdo.results.thrust_trim`); alone,
+        at the design point.  A point whose thrust is out of reach is recorded in ``result.status``.
+    trim : {'collective_pitch', 'rpm'}
+        What the thrust trim sets: the collective pitch (with a J, airspeed or rpm sweep) or the rotor
+        speed (with an airspeed sweep or at the design point).
+
     Returns
     -------
     OffDesignResult
@@ -315,7 +323,15 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     if advance_ratios is not None and v_axial is not None:
         raise ValueError("an advance-ratio sweep fixes the airspeed by J and rpm (V = J n D): leave v_axial out, "
                          "or sweep the airspeed with v_axial=[...] instead of advance_ratios")
-    if advance_ratios is None and rpms is None and not airspeed_sweep and not pitch_sweep:
+    if thrust is not None:
+        thrust = float(validation.positive("thrust", thrust, units="N", ndim=(0,)))
+        validation.choice("trim", trim, TRIM_VARIABLES)
+        if trim == "collective_pitch" and pitch_sweep:
+            raise ValueError("a thrust trim by collective pitch sets each point's pitch: give no pitch sweep")
+        if trim == "rpm" and (rpms is not None or advance_ratios is not None):
+            raise ValueError("a thrust trim by rotor speed sets each point's rpm (and so J): sweep the airspeed "
+                             "(v_axial=[...]) or trim the collective pitch")
+    if advance_ratios is None and rpms is None and not airspeed_sweep and not pitch_sweep and thrust is None:
         raise ValueError("give advance_ratios (J sweep), rpms (rotor-speed sweep), a list of v_axial (airspeed "
                          "sweep) or a list of collective_pitch values (pitch sweep)")
     if pitches.size == 0:
@@ -363,62 +379,44 @@ def off_design_sweep(geometry, advance_ratios=None, rpms=None, v_axial=None, rpm
     validation.memory_bound("sweep points", count, geom.num_radial, hint="use fewer points or pitches")
     pitch = np.repeat(pitches, speeds.size)
     speeds, velocities, j = (np.tile(a, pitches.size) for a in (speeds, velocities, j))
+    analysis = dict(altitude=0.0 if fluid is not None else altitude, fluid=fluid, loss_model=loss_model,
+                    radii=geom.radii, dr=geom.dr)
+    reached = np.ones(count, dtype=bool)
+    if thrust is not None:
+        def thrust_at(values):
+            k = values.shape[1]
+            x = {"collective_pitch": np.repeat(pitch, k), "rpm": np.repeat(speeds, k)}
+            x[trim] = values.ravel()
+            try:
+                with warnings.catch_warnings():  # the scan's trial speeds may pass Mach 1; the result warns itself
+                    warnings.simplefilter("ignore", TipMachWarning)
+                    result = analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, x["rpm"],
+                                           np.repeat(velocities, k), geom.num_blades, polar, on_invalid="ignore",
+                                           collective_pitch=x["collective_pitch"], **analysis)
+            except om.AnalysisError:
+                return np.full(values.shape, np.nan)
+            return np.asarray(result.thrust).reshape(values.shape)
+
+        solved, reached = trim_points(thrust_at, thrust, pitch if trim == "collective_pitch" else speeds, trim)
+        if trim == "collective_pitch":
+            pitch = solved
+        else:
+            speeds = solved
+            j = velocities / (speeds * revs_per_diameter)
 
     def run(points, mode):
         return analyze_rotor(geom.chord, geom.twist, geom.radius, geom.hub_radius, speeds[points],
-                             velocities[points], geom.num_blades, polar,
-                             altitude=0.0 if fluid is not None else altitude,
-                             fluid=fluid, loss_model=loss_model,
-                             radii=geom.radii, dr=geom.dr, on_invalid=mode, collective_pitch=pitch[points])
+                             velocities[points], geom.num_blades, polar, on_invalid=mode,
+                             collective_pitch=pitch[points], **analysis)
 
     r_over_r = np.broadcast_to(np.asarray(geom.radii) / geom.radius, (count, np.size(geom.radii)))
-    bem, performance, stations, status = _analyze_points(run, count, on_invalid, r_over_r)
+    bem, performance, stations, status = analyze_points(run, count, on_invalid, r_over_r)
+    if not np.all(reached):
+        status[~reached] = out_of_reach(trim, thrust)
+        for values in performance.values():
+            values[~reached] = np.nan
+        bem = None
     return OffDesignResult(sweep=sweep, advance_ratio=j, v_axial=velocities, rpm=speeds, performance=performance,
                            geometry=geom, altitude=altitude, design_advance_ratio=point.get("advance_ratio"), bem=bem,
                            status=status, flow_state=stations["flow_state"], mach=stations["mach"],
                            collective_pitch=pitch)
-
-
-def _one_line(message):
-    """An error text as one line, without OpenMDAO's component prefix or the sub-run's node number."""
-    message = re.sub(r"^'[^']*' <class \w+>: Error calling \w+\(\), ", "", " ".join(str(message).split()))
-    return message.replace("node 0, ", "")
-
-
-def _analyze_points(run, count, on_invalid, r_over_r):
-    """Analyse every point in one run; isolate points that raise by bisection.
-
-    Returns ``(bem or None, performance, stations, status)``, ``stations`` the
-    per-station ``flow_state`` (-1 at failed points) and ``mach`` (NaN there),
-    shape ``(count, nr)``.  Stations in invalid flow states are found from
-    ``flow_state`` (one run with ``on_invalid='ignore'``): one warning for
-    ``'warn'``, failed points for ``'raise'``.
-    """
-    status = np.full(count, "ok", dtype=object)
-    performance = {metric.name: np.full(count, np.nan) for metric in METRICS}
-    stations = {"flow_state": np.full((count, r_over_r.shape[1]), -1, dtype=int),
-                "mach": np.full((count, r_over_r.shape[1]), np.nan)}
-    bem = None
-    successes, failures = isolate_failures(lambda points: run(points, "ignore"), np.arange(count), om.AnalysisError)
-    for point, err in failures:
-        status[point] = _one_line(err)
-    for points, result in successes:
-        for name, values in stations.items():
-            values[points] = np.atleast_2d(getattr(result, name))
-        for name, values in performance.items():
-            values[points] = getattr(result, name)
-        bem = result if points.size == count else None
-    flow_state = stations["flow_state"]
-    if on_invalid != "ignore":
-        invalid = np.flatnonzero(np.any(np.isin(flow_state, INVALID_STATES), axis=1))
-        if on_invalid == "warn" and invalid.size:
-            warnings.warn(describe_invalid(np.where(flow_state < 0, PROPELLER, flow_state), r_over_r),
-                          BEMStateWarning, stacklevel=3)
-        elif invalid.size:
-            for i in invalid:  # messages only; the analysis ran once for all points
-                status[i] = _one_line(describe_invalid(flow_state[i:i + 1], r_over_r[i:i + 1]))
-            for values in performance.values():
-                values[invalid] = np.nan
-            stations["mach"][invalid] = np.nan
-            bem = None
-    return bem, performance, stations, status

@@ -47,7 +47,7 @@ def test_version(capsys):
     (["design", "--rpm", "800", "900", "--ref-chord", "0.1", "0.2", "0.3"], "batch sizes disagree"),
     (["analyze", "missing.csv", "--rpm", "500", "900", "3"], "not found"),
     (["analyze", "missing.csv"], "give the sweep: --advance-ratio START STOP N, --v-axial START STOP N, --rpm "
-                                    "START STOP N or --collective-pitch START STOP N"),
+                                    "START STOP N or --collective-pitch START STOP N, or a trim: --thrust T"),
     (["analyze", "missing.csv", "--rpm", "500", "900", "2.5"], "--rpm N must be an integer >= 1, got 2.5"),
     (["analyze", "missing.csv", "--advance-ratio", "0", "1", "0"], "--advance-ratio N must be an integer >= 1, got 0"),
     (["verify", "--levels", "x"], "invalid int value"),

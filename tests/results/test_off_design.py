@@ -3,6 +3,7 @@ import numpy as np
 import pytest
 
 import bild_mdo.results.off_design as off_design_module
+import bild_mdo.results.point_analysis as point_analysis
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bem.metrics import METRICS
 from bild_mdo.results.design import design_rotor
@@ -180,7 +181,7 @@ def test_points_that_raise_are_isolated_by_bisection():
         return Result(points)
 
     r_over_r = np.ones((7, 3))
-    bem, performance, stations, status = off_design_module._analyze_points(run, 7, "raise", r_over_r)
+    bem, performance, stations, status = point_analysis.analyze_points(run, 7, "raise", r_over_r)
     flow_state = stations["flow_state"]
     assert bem is None
     assert [s == "ok" for s in status] == [True, True, False, True, True, False, True]
