@@ -21,6 +21,12 @@ station overloads; in forward flight the thrust can even peak before that),
 or that does not converge in ``maxiter`` passes, is parked at its largest
 feasible chord below the target, evaluated once more and recorded in the
 group's feasibility ledger (raised or flagged like every infeasible design).
+With the local section point the thrust can jump where the section point of
+the reference station changes branch.  A bracket that closes on a jump (its
+two ends still more than 1e-6 apart in ``ln T``) is not a solution: the
+target lies in the gap and the design is reported so ("thrust target in a
+jump of the design").  A downward jump (``lo`` above ``hi``) sends the search
+on to the piece below ``hi``, where the thrust rises to the target again.
 
 The total derivatives do not depend on the solver: the group's
 :class:`openmdao.api.DirectSolver` solves the linear system of the whole
@@ -43,6 +49,8 @@ _SLOPE_RANGE = (0.05, 20.0)
 _EPS = np.finfo(float).eps
 # A target not reached within this relative chord of the feasibility boundary is reported as out of reach.
 _BOUNDARY_WIDTH = 1e-9
+# |ln(T/T*)| above which a bracket closed by round-off is a jump of the design, not a converged chord.
+_JUMP_GAP = 1e-6
 
 
 class ThrustTargetComp(om.ImplicitComponent):
@@ -102,6 +110,7 @@ class ThrustTargetComp(om.ImplicitComponent):
         self._hi = np.full(nn, np.inf)
         self._hi_infeasible = np.zeros(nn, dtype=bool)  # whether hi was set by an infeasible design
         self._parked = np.zeros(nn, dtype=bool)  # given up: at the largest feasible chord, reported at the end
+        self._jumped = np.zeros(nn, dtype=bool)  # given up because the target lies in a jump of the thrust
         self._previous = None  # (y, g, feasible) of the last pass, for the secant
         #: True once every design is converged or given up (the last pass was consistent).
         self.finished = False
@@ -129,8 +138,9 @@ class ThrustTargetComp(om.ImplicitComponent):
     def _step(self, inputs, outputs, ledger):
         """One pass: update the brackets, take the steps, decide whether this pass is the last."""
         thrust, target = inputs["thrust"], inputs["thrust_target"]
-        key = f"{self.pathname}:target"
+        key, jump_key = f"{self.pathname}:target", f"{self.pathname}:jump"
         ledger.record(key, np.zeros(thrust.shape, dtype=bool), "", {})
+        ledger.record(jump_key, np.zeros(thrust.shape, dtype=bool), "", {})
         chord = outputs["ref_chord"]
         y = np.log(chord)
         y_real = np.real(y)
@@ -144,8 +154,11 @@ class ThrustTargetComp(om.ImplicitComponent):
         # round-off on a feasible side.  Under complex step the imaginary part must have converged too.
         both = np.isfinite(self._lo) & np.isfinite(self._hi)
         closed = both & ((self._hi - self._lo) <= 4.0 * _EPS * np.maximum(np.abs(self._hi), 1.0))
+        # A bracket closed on a jump of the thrust (a branch switch of the section point moves every station)
+        # is not a solution: the target lies in the gap.  It is given up and reported as such.
+        jump = feasible & closed & ~self._hi_infeasible & (np.abs(g_real) > _JUMP_GAP)
         converged = feasible & ((np.abs(g_real) <= self.options["rtol"]) | (np.abs(step) <= 4.0 * _EPS)
-                                | (closed & ~self._hi_infeasible))
+                                | (closed & ~self._hi_infeasible & ~jump))
         real_converged = converged
         if np.iscomplexobj(g):
             # The imaginary step below round-off of the imaginary part of ln c_ref (exactly zero where the
@@ -155,13 +168,19 @@ class ThrustTargetComp(om.ImplicitComponent):
         # Out of reach (the bracket closed on an infeasible side) or out of passes: the design is parked at
         # its largest feasible chord below the target, evaluated once more, and reported.
         at_boundary = both & self._hi_infeasible & ((self._hi - self._lo) <= _BOUNDARY_WIDTH)
-        give_up = ~converged & ~self._parked & (at_boundary | (self._passes >= self.options["maxiter"]))
+        self._jumped |= jump
+        give_up = ~converged & ~self._parked & (at_boundary | jump | (self._passes >= self.options["maxiter"]))
         move = give_up & np.isfinite(self._lo) & (self._lo != y_real)
         self._parked |= give_up
         if np.all(converged | self._parked) and not np.any(move):
             self.finished = True
             ledger.deferred = False
-            ledger.record(key, self._parked & ~converged,
+            ledger.record(jump_key, self._parked & self._jumped,
+                          "thrust target in a jump of the design: the ideal rotor's thrust jumps across it at this "
+                          "reference chord (the section point changes branch; see section_branch); ask for a thrust "
+                          "outside the gap, or use section_point='reference'",
+                          {"T* [N]": target, "T [N]": thrust, "ref_chord [m]": chord})
+            ledger.record(key, self._parked & ~converged & ~self._jumped,
                           "thrust target not reached: above the largest thrust of a feasible ideal loading "
                           "(lower it, or raise rpm or radius) or the reference-chord solve did not converge",
                           {"T* [N]": target, "T [N]": thrust, "ref_chord [m]": chord})
@@ -183,6 +202,9 @@ class ThrustTargetComp(om.ImplicitComponent):
         above = ~feasible | (g > 0.0)
         self._hi_infeasible = np.where(above & (y <= self._hi), ~feasible, self._hi_infeasible)
         self._hi = np.where(above, np.minimum(self._hi, y), self._hi)
+        # The thrust can jump DOWN where the section point changes branch (lo ends up above hi): a solution
+        # then lies on the piece left of hi (T rises with c_ref on each piece), so the search goes on there.
+        self._lo = np.where(self._lo > self._hi, -np.inf, self._lo)
 
     def _update_slopes(self, y, g, feasible):
         """Secant slopes ``d ln T / d ln c_ref``: of the real parts (kept), and of the imaginary parts.

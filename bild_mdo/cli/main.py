@@ -30,7 +30,7 @@ import warnings
 import openmdao.api as om
 
 from bild_mdo import __version__
-from bild_mdo.cli import analyze, demo, design, verify
+from bild_mdo.cli import analyze, compare, demo, design, verify
 
 EXIT_USAGE = 2
 #: Exit code of an unexpected error (a bug), reported as one line; ``--debug`` shows the traceback.
@@ -40,6 +40,7 @@ EXIT_INTERNAL = 1
 COMMANDS = {
     "design": (design, design.add_design_arguments, design.run_design),
     "analyze": (analyze, analyze.add_analyze_arguments, analyze.run_analyze),
+    "compare": (compare, compare.add_compare_arguments, compare.run_compare),
     "verify": (verify, verify.add_verify_arguments, verify.run_verify),
     "demo": (demo, demo.add_demo_arguments, demo.run_demo),
 }
@@ -76,7 +77,7 @@ def _add_debug(parser, top_level=False):
 
 
 def build_parser():
-    """The ``bild-mdo`` argument parser (subcommands design, analyze, verify, demo).
+    """The ``bild-mdo`` argument parser (subcommands design, analyze, compare, verify, demo).
 
     Returns
     -------

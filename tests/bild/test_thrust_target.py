@@ -5,6 +5,8 @@ import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bild import BILDGroup
+from bild_mdo.bild.feasibility import FeasibilityLedger
+from bild_mdo.bild.thrust_target import ReferenceChordSolver, ThrustTargetComp
 from bild_mdo.utils.testing import check_group_totals
 from tests.bild.test_bild_group_airfoils import SPANWISE
 
@@ -82,3 +84,48 @@ def test_nonpositive_target_raises():
     inputs, _ = _designs("hover", n=3)
     with pytest.raises(om.AnalysisError, match="thrust_target must be positive and finite, got 0.0 at node 1"):
         _run(inputs, thrust_target=np.array([100.0, 0.0, 100.0]))
+
+
+class _PiecewiseThrust(om.ExplicitComponent):
+    """T = 1000 c [N/m] plus ``jump`` N where c > 0.1 m: a design whose thrust jumps at a branch switch."""
+
+    def initialize(self):
+        self.options.declare("jump", types=float)
+
+    def setup(self):
+        self.add_input("ref_chord", val=np.full(3, 0.05), units="m")
+        self.add_output("thrust", val=np.ones(3), units="N")
+
+    def compute(self, inputs, outputs):
+        c = inputs["ref_chord"]
+        outputs["thrust"] = 1000.0 * c + np.where(c > 0.1, self.options["jump"], 0.0)
+
+
+class _JumpGroup(om.Group):
+    def initialize(self):
+        self.options.declare("jump", types=float)
+
+    def setup(self):
+        self.feasibility = FeasibilityLedger(3)
+        self.add_subsystem("thrust", _PiecewiseThrust(jump=self.options["jump"]), promotes=["*"])
+        self.thrust_target_balance = self.add_subsystem(
+            "balance", ThrustTargetComp(num_nodes=3, feasibility=self.feasibility), promotes=["*"])
+        self.nonlinear_solver = ReferenceChordSolver()
+
+
+@pytest.mark.parametrize("jump, targets, reached", [
+    # Up by 500 N at c = 0.1 m: 300 N lies in the gap 100 ... 600 N and has no reference chord.
+    (500.0, [50.0, 300.0, 700.0], [True, False, True]),
+    # Down by 50 N: 75 N is met twice (c = 0.075 m and 0.125 m); either is a solution.
+    (-50.0, [40.0, 75.0, 200.0], [True, True, True]),
+])
+def test_a_jump_of_the_thrust_is_never_taken_for_a_solution(jump, targets, reached):
+    prob = om.Problem(_JumpGroup(jump=jump), reports=False)
+    prob.setup()
+    prob.set_val("thrust_target", targets)
+    prob.run_model()
+    feasible = ~prob.model.feasibility.infeasible
+    np.testing.assert_array_equal(feasible, reached)
+    np.testing.assert_allclose(prob.get_val("thrust")[feasible], np.array(targets)[feasible], rtol=1e-12)
+    for status in prob.model.feasibility.status()[~feasible]:
+        assert status.startswith("thrust target in a jump of the design")
