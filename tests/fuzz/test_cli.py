@@ -21,7 +21,8 @@ SCALE = int(os.environ.get("BILD_MDO_FUZZ_SCALE", "1"))
 FUZZ = settings(max_examples=40 * SCALE, deadline=None, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 
-NUMBERS = ["0", "-1", "nan", "inf", "-inf", "1e400", "abc", "", "True", "1,5", "0x3", "1e-300", "3", "2.5"]
+NUMBERS = ["0", "-1", "nan", "inf", "-inf", "1e400", "abc", "", "True", "1,5", "0x3", "1e-300", "3", "2.5", "1e12"]
+FLUIDS = ["water", "seawater", "Air", "lava", "", "1000,1e-3,1480", "1000,1e-3", "1,-2,3", "a,b,c"]
 GOOD = {"--rpm": ["800", "1200"], "--radius": ["1.5", "0.5"], "--hub-radius-ratio": ["0.2", "0.3"],
         "--ref-radius-ratio": ["0.5", "0.7"], "--ref-chord": ["0.15", "0.05"], "--altitude": ["0", "3000", "11000"],
         "--v-axial": ["0", "10"], "--advance-ratio": ["0.5", "1.0"], "--thrust": ["1500", "800"]}
@@ -53,6 +54,8 @@ def design_argv(draw):
         argv += ["--num-blades", draw(st.sampled_from(["2", "3", "0", "-1", "2.5", "x", "True"]))]
     if draw(st.booleans()):
         argv += ["--root-chord-correction", draw(st.sampled_from(["0.5", "2"] + NUMBERS))]
+    if draw(st.booleans()):
+        argv += ["--fluid", draw(st.sampled_from(FLUIDS[:2] if clean else FLUIDS))]
     for option in draw(st.lists(st.sampled_from(["--csv", "--json", "--qprop", "--plot"]), max_size=2, unique=True)):
         argv += [option, draw(st.sampled_from(PLOTS if option == "--plot" else TARGETS))]
     return argv
@@ -73,9 +76,14 @@ def analyze_argv(draw):
         good = {"--advance-ratio": ["0", "1.2"], "--rpm": ["600", "1000"], "--collective-pitch": ["-2", "3"]}[sweep]
         argv += [sweep] + draw(st.lists(st.sampled_from(good + NUMBERS + ["3", "1e9", "100000000"]), min_size=0,
                                         max_size=4))
-    for option in draw(st.lists(st.sampled_from(["--at-rpm", "--v-axial", "--altitude", "--design"]), max_size=2,
-                                unique=True)):
-        argv += [option, draw(st.sampled_from(["1000", "5", "0", "1"] + NUMBERS))]
+    for option in draw(st.lists(st.sampled_from(["--at-rpm", "--v-axial", "--altitude", "--design", "--thrust"]),
+                                max_size=2, unique=True)):
+        argv += [option] + draw(st.lists(st.sampled_from(["1000", "5", "0", "1"] + NUMBERS), min_size=1,
+                                         max_size=3 if option == "--v-axial" else 1))
+    if draw(st.booleans()):
+        argv += ["--trim", draw(st.sampled_from(["collective_pitch", "rpm", "pitch"]))]
+    if draw(st.booleans()):
+        argv += ["--fluid", draw(st.sampled_from(FLUIDS))]
     if draw(st.booleans()):
         argv += ["--airfoil", draw(st.sampled_from(AIRFOILS))]
     if draw(st.booleans()):
@@ -84,6 +92,15 @@ def analyze_argv(draw):
         argv += ["--csv", draw(st.sampled_from(TARGETS))]
     if draw(st.booleans()):
         argv += ["--plot", draw(st.sampled_from(PLOTS))]
+    return argv
+
+
+@st.composite
+def compare_argv(draw):
+    files = draw(st.lists(st.sampled_from(["{tmp}/" + name for name in GEOMETRIES]), min_size=0, max_size=3))
+    argv = ["compare"] + files
+    if draw(st.booleans()):
+        argv += ["--plot", draw(st.sampled_from(PLOTS + ["{tmp}/c.png"]))]
     return argv
 
 
@@ -127,6 +144,12 @@ def test_design_arguments(argv):
 @FUZZ
 @given(argv=analyze_argv())
 def test_analyze_arguments(argv):
+    _run(argv)
+
+
+@FUZZ
+@given(argv=compare_argv())
+def test_compare_arguments(argv):
     _run(argv)
 
 
