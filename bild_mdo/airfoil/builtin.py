@@ -18,20 +18,31 @@ from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.airfoil.surrogate import TabulatedPolar
 
 
+#: The lowest Reynolds number of the paper's NACA 4412 tables (Appendix 7.2): the built-in surrogate is split
+#: there (``TabulatedPolar(split_reynolds=...)``), so that above it it is the paper's surrogate, bit for bit.
+NACA4412_PAPER_LOWEST_REYNOLDS = 5e4
+
+
 @functools.lru_cache(maxsize=None)
 def naca4412():
     """Smooth surrogate of the built-in XFOIL polars of the NACA 4412 (cached).
 
-    Ten Reynolds numbers from 5e4 to 2e6, as in the paper (Appendix 7.2).
-    Loaded from the polar cache (:mod:`bild_mdo.airfoil.cache`) after the
-    first build on a machine.
+    Sixteen Reynolds numbers from 1e4 to 2e6 (``bild_mdo/airfoil/data/README.md``):
+    the paper's ten from 5e4 (Appendix 7.2) and six low-Reynolds tables from
+    1e4 to 4.5e4 made with the same XFOIL settings.  The spline in Re is split
+    at 5e4 (:data:`NACA4412_PAPER_LOWEST_REYNOLDS`), so from 5e4 up the
+    surrogate is the one of the paper's tables alone; below 1e4 it continues
+    bounded (:class:`~bild_mdo.airfoil.surrogate.TabulatedPolar`).  Loaded
+    from the polar cache (:mod:`bild_mdo.airfoil.cache`) after the first
+    build on a machine.
 
     Returns
     -------
     TabulatedPolar
         The same object on every call.
     """
-    return TabulatedPolar.cached(load_builtin_polars("naca4412"), name="naca4412")
+    return TabulatedPolar.cached(load_builtin_polars("naca4412"), name="naca4412",
+                                 split_reynolds=NACA4412_PAPER_LOWEST_REYNOLDS, low_end="physical")
 
 
 _REGISTRY = {

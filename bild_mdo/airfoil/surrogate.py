@@ -1,53 +1,26 @@
 """Smooth ``C_l(alpha, Re)``, ``C_d(alpha, Re)`` surrogate of tabulated polars (paper Sec. 3.2, App. 7.2)."""
 from __future__ import annotations
 
-import functools
 import warnings
-from pathlib import Path
 
 import numpy as np
 
-from bild_mdo.airfoil import cache, viterna
 from bild_mdo.airfoil.polar import Polar, PolarSecondDerivatives, PolarValues
 from bild_mdo.airfoil.sources.polar_data import PolarData
 from bild_mdo.airfoil.sources.readers import read_polar_table, read_xfoil_polar
+from bild_mdo.airfoil.surrogate_spline import (LOW_ENDS, LOW_REYNOLDS_BOUNDS, LOW_REYNOLDS_DRAG_FACTOR,
+                                              LOW_REYNOLDS_LIFT_CHANGE, physical_low_slope, reynolds_spline,
+                                              split_index)
+from bild_mdo.airfoil.surrogate_state import SURROGATE_VERSION, CachedSurrogate, code_version
 from bild_mdo.airfoil.surrogate_terms import EXTRAPOLATED_ROWS, extrapolate_log_reynolds, per_reynolds, spline_terms
 from bild_mdo.airfoil.viterna import (DEFAULT_CD_MAX, DEFAULT_CD_REVERSE, STALL_BLEND_HALF_WIDTH,
                                       default_alpha_grid, extend_polar)
 
-__all__ = ["TabulatedPolar", "code_version", "extrapolate_log_reynolds"]
-#: Version of the surrogate construction, part of every cache key (with a hash of
-#: this module's and viterna's source, and scipy's version): bump it when the
-#: numbers a TabulatedPolar gives change for the same data and settings.
-SURROGATE_VERSION = 2
-
-# Everything a TabulatedPolar needs to evaluate, as stored in the polar cache.
-_STATE_ARRAYS = ("reynolds", "coef", "grid", "ext_cl", "ext_cd", "ext_dcl", "ext_dcd", "ext_stall",
-                 "ext_stall_negative", "scalars", "name", "data_mach")
+__all__ = ["LOW_REYNOLDS_DRAG_FACTOR", "LOW_REYNOLDS_LIFT_CHANGE", "SURROGATE_VERSION", "TabulatedPolar",
+           "code_version", "extrapolate_log_reynolds"]
 
 
-def _default_settings():
-    return {"cd_max": DEFAULT_CD_MAX, "cd_reverse": DEFAULT_CD_REVERSE, "epsilon": STALL_BLEND_HALF_WIDTH,
-            "pre_stall": "spline", "smoothing": None, "alpha_step_deg": 0.25}
-
-
-@functools.lru_cache(maxsize=None)
-def code_version():
-    """Identifier of the code that builds surrogates, part of every cache key: a ``str`` of
-    :data:`SURROGATE_VERSION`, scipy's version (its smoothing splines fit the data) and a
-    hash of this module's and :mod:`~bild_mdo.airfoil.viterna`'s source."""
-    import scipy
-
-    sources = []
-    for module_file in (__file__, viterna.__file__):
-        try:
-            sources.append(Path(module_file).read_bytes())
-        except OSError:
-            sources.append(b"")
-    return f"{SURROGATE_VERSION}|scipy {scipy.__version__}|{cache.hash_key(*sources)[:16]}"
-
-
-class TabulatedPolar(Polar):
+class TabulatedPolar(CachedSurrogate, Polar):
     """Bicubic-spline surrogate of polars tabulated at several Reynolds numbers.
 
     Construction (paper Appendix 7.2, Eq. 33): every Reynolds number's data are
@@ -62,7 +35,8 @@ class TabulatedPolar(Polar):
     here.  A cubic spline interpolant of data that are already smooth (the
     XFOIL scatter is removed per Reynolds number, before the extension, by a
     smoothing spline in ``alpha``, drag in log space) does the same job: it is
-    C^2 everywhere (stall blends and +-180 deg included), so optimisers and
+    C^2 everywhere within the table (stall blends and +-180 deg included; C^1 in Re at a
+    ``split_reynolds``), so optimisers and
     the BEM Newton solve see continuous Jacobians; it reproduces the Eq. (33)
     curves at the table's Reynolds numbers and grid angles; its derivatives
     are analytic and cheap (bicubic pieces), and evaluation is a look-up on a
@@ -76,16 +50,29 @@ class TabulatedPolar(Polar):
 
     Past the table, beyond an edge ``L_e`` of ``L = log10 Re``, the spline is
     continued C^1 in ``L`` from the edge's value ``f(alpha)`` and slope
-    ``s = df/dL`` (:func:`extrapolate_log_reynolds`; ``d = L - L_e``)::
+    ``s = df/dL`` (:func:`extrapolate_log_reynolds`; ``d = L - L_e``).  Above
+    the table::
 
         cl = f + d s           linear in log Re
-        cd = f exp(d s / f)    log cd linear in log Re: a power law cd ~ Re^(s / (f ln 10)),
+        cd = f exp(d m)        m = s / f: log cd linear in log Re, a power law cd ~ Re^(m / ln 10),
                                the form of skin-friction laws (Re^-1/2 laminar, Re^-1/5 turbulent)
 
+    Below the table the same lines saturate (``C`` = :data:`LOW_REYNOLDS_LIFT_CHANGE`,
+    ``K = ln`` :data:`LOW_REYNOLDS_DRAG_FACTOR`)::
+
+        cl = f + C tanh(d s / C)        |cl - f| < C
+        cd = f exp(K tanh(d m / K))     f / 3 < cd < 3 f
+
+    so lift and drag stay bounded and monotone in Re however low the Reynolds
+    number (each in the direction of its slope at the edge), instead of lines
+    that leave the physical range (a lift that changes sign, a drag of 0.5,
+    as the paper's tables from 5e4 gave at 1e4); to first order in ``d`` it is
+    the same as above the table (``tanh x = x - x**3/3 ...``).
+
     Values, Re slopes, alpha derivatives up to the second and the cross terms
-    ``d2/(dalpha dRe)`` are continuous at the edge, and so are the maximum-L/D
+    ``d2/(dalpha dRe)`` are continuous at the edges, and so are the maximum-L/D
     point and its derivatives; ``d2/dRe2`` jumps there (the continuation is C^1:
-    past the edge ``d2cl/dL2 = 0`` and ``d2cd/dL2 = cd (s/f)**2``).  ``cd > 0``
+    at the edge ``d2cl/dL2 = 0`` and ``d2(log cd)/dL2 = 0`` on the outside).  ``cd > 0``
     past the table: the positive edge value times an exponential (ValueError if
     the edge value is not positive).
     (Clamped instead, the zero Re slope past the edge made Ipopt cycle there.)
@@ -113,6 +100,18 @@ class TabulatedPolar(Polar):
         Smoothing-spline penalty; default chosen by generalised cross-validation.
     alpha_step_deg : float
         Spacing of the angle grid (deg).
+    split_reynolds : float, optional
+        A tabulated Reynolds number (not the first or last) where the spline
+        in ``log10 Re`` is split: the tables from it up get their own
+        not-a-knot spline (bit for bit the surrogate of those tables alone),
+        the tables below one joined C^1 to it (``d2/dRe2`` jumps there).  The
+        built-in NACA 4412 splits at 5e4 (bild_mdo/airfoil/data/README.md).
+    low_end : {'not-a-knot', 'physical'}
+        End condition in ``log10 Re`` at the lowest table: not-a-knot
+        (default), or slopes clamped to lift flat in Re and ``log cd`` falling
+        with one power law of Re times ``cos(alpha)**2``
+        (:func:`~bild_mdo.airfoil.surrogate_spline.physical_low_slope`), so
+        that below the table lift stays and drag rises as Re drops.
     name : str, optional
         Name used in messages.
 
@@ -130,14 +129,14 @@ class TabulatedPolar(Polar):
     data : tuple of PolarData or None
         The tables it was built from (``None`` when made by :meth:`from_state` alone).
     settings : dict or None
-        The constructor settings (``cd_max`` ... ``alpha_step_deg``).
+        The constructor settings (``cd_max`` ... ``split_reynolds``).
     """
 
     name = "tabulated"
 
     def __init__(self, polars, *, cd_max=DEFAULT_CD_MAX, cd_reverse=DEFAULT_CD_REVERSE,
                  epsilon=STALL_BLEND_HALF_WIDTH, pre_stall="spline", smoothing=None,
-                 alpha_step_deg=0.25, name=None):
+                 alpha_step_deg=0.25, split_reynolds=None, low_end="not-a-knot", name=None):
         from scipy.interpolate import CubicSpline  # only when building: a cached load needs numpy only
 
         polars = sorted(polars, key=lambda p: p.reynolds)
@@ -152,8 +151,13 @@ class TabulatedPolar(Polar):
             raise ValueError(f"TabulatedPolar: Reynolds numbers must be distinct, got {reynolds.tolist()}")
         self.data_mach = machs[0]
         self.data = tuple(polars)
+        split = split_index(reynolds, split_reynolds)
+        if low_end not in LOW_ENDS:
+            raise ValueError(f"TabulatedPolar: low_end must be one of {', '.join(LOW_ENDS)}, got {low_end!r}")
         self.settings = {"cd_max": cd_max, "cd_reverse": cd_reverse, "epsilon": epsilon, "pre_stall": pre_stall,
-                         "smoothing": smoothing, "alpha_step_deg": alpha_step_deg}
+                         "smoothing": smoothing, "alpha_step_deg": alpha_step_deg,
+                         "split_reynolds": None if split_reynolds is None else float(split_reynolds),
+                         "low_end": low_end}
         if name is not None:
             self.name = str(name)
         grid = default_alpha_grid(alpha_step_deg)
@@ -179,7 +183,8 @@ class TabulatedPolar(Polar):
             coef[:, 0, :, :, 3] = np.transpose(c_alpha[:, :, 0, :], (1, 2, 0))
             self._n_re_cells = 1
         else:
-            c_re = CubicSpline(self._log_re, c_alpha, axis=2, bc_type="not-a-knot").c
+            low_slope = physical_low_slope(grid, values, self._log_re) if low_end == "physical" else None
+            c_re = reynolds_spline(self._log_re, c_alpha, split, low_slope)
             # c_re[k, j, m, i, q]: power 3 - k of (log10 Re - log_re[j]).
             self._n_re_cells = reynolds.size - 1
             coef = np.transpose(c_re, (3, 1, 4, 2, 0))           # [i, j, q, m, k]
@@ -195,95 +200,6 @@ class TabulatedPolar(Polar):
         self._n_alpha_cells = grid.size - 1
         self._log_re = np.log10(self.reynolds)
         self._n_re_cells = max(self.reynolds.size - 1, 1)
-
-    # ------------------------------------------------------------ the disk cache
-    @classmethod
-    def cache_key(cls, polars, **kwargs):
-        """The polar cache key (str): a hash of ``polars``, the constructor settings ``**kwargs`` but
-        ``name``, and :func:`code_version`."""
-        settings = {k: v for k, v in kwargs.items() if k != "name"}
-        data = [(float(p.reynolds), float(p.mach), p.alpha_deg, p.cl, p.cd)
-                for p in sorted(polars, key=lambda p: (p.mach, p.reynolds))]
-        return cache.hash_key("TabulatedPolar", code_version(), settings, data)
-
-    @classmethod
-    def cached(cls, polars, **kwargs):
-        """:class:`TabulatedPolar` of ``polars``, loaded from the polar cache or built and stored there.
-
-        The same numbers as ``TabulatedPolar(polars, **kwargs)``, bit for bit
-        (the cache holds the spline coefficients themselves).  A change of the
-        data, the settings or the surrogate code changes the key, so the
-        surrogate is rebuilt (see :mod:`bild_mdo.airfoil.cache`).
-
-        Parameters
-        ----------
-        polars : sequence of PolarData
-        **kwargs
-            Passed to :class:`TabulatedPolar`.
-
-        Returns
-        -------
-        TabulatedPolar
-        """
-        polars = list(polars)
-        key = cls.cache_key(polars, **kwargs)
-        label = kwargs.get("name") or cls.name
-        state = cache.load_arrays("surrogate", label, key)
-        if state is not None and all(k in state for k in _STATE_ARRAYS):
-            polar = cls.from_state(state)
-            if kwargs.get("name") is not None:
-                polar.name = str(kwargs["name"])
-            polar.data = tuple(sorted(polars, key=lambda p: p.reynolds))
-            polar.settings = dict(_default_settings(), **{k: v for k, v in kwargs.items() if k != "name"})
-            return polar
-        polar = cls(polars, **kwargs)
-        cache.store_arrays("surrogate", label, key, polar.state())
-        return polar
-
-    def state(self):
-        """The arrays (dict of str to ndarray) that define this surrogate: :meth:`cached` stores them,
-        :meth:`from_state` reads them."""
-        ext = self.extended
-        return {
-            "reynolds": self.reynolds, "coef": self._coef, "grid": ext[0].alpha,
-            "ext_cl": np.stack([e.cl for e in ext]), "ext_cd": np.stack([e.cd for e in ext]),
-            "ext_dcl": np.stack([e.dcl_dalpha for e in ext]), "ext_dcd": np.stack([e.dcd_dalpha for e in ext]),
-            "ext_stall": np.array([e.alpha_stall for e in ext]),
-            "ext_stall_negative": np.array([e.alpha_stall_negative for e in ext]),
-            "scalars": np.array([self._alpha0, self._alpha_step, *self.alpha_scan_range]),
-            "name": np.array(self.name), "data_mach": np.array(self.data_mach),
-        }
-
-    @classmethod
-    def from_state(cls, state):
-        """A surrogate from the arrays of :meth:`state` (no fitting).
-
-        Parameters
-        ----------
-        state : mapping of str to ndarray
-
-        Returns
-        -------
-        TabulatedPolar
-        """
-        polar = cls.__new__(cls)
-        polar.name = str(state["name"])
-        polar.reynolds = np.asarray(state["reynolds"], dtype=float)
-        polar.data_mach = float(state["data_mach"])
-        grid = np.asarray(state["grid"], dtype=float)
-        polar.extended = [
-            viterna.ExtendedPolar(grid, *(np.asarray(state[k][i]) for k in ("ext_cl", "ext_cd", "ext_dcl",
-                                                                              "ext_dcd")),
-                                  float(state["ext_stall"][i]), float(state["ext_stall_negative"][i]), float(re))
-            for i, re in enumerate(polar.reynolds)]
-        scalars = np.asarray(state["scalars"], dtype=float)
-        polar.alpha_scan_range = (float(scalars[2]), float(scalars[3]))
-        polar._set_grid(grid)
-        polar._alpha0, polar._alpha_step = float(scalars[0]), float(scalars[1])
-        polar._coef = np.ascontiguousarray(state["coef"], dtype=float)
-        polar._warned = False
-        polar.data = polar.settings = None
-        return polar
 
     # ----------------------------------------------------------------- builders
     @classmethod
@@ -350,7 +266,8 @@ class TabulatedPolar(Polar):
         if not self._warned and not np.all(inside):
             self._warned = True
             how = ("are evaluated at it (one table: lift and drag do not change with Re)" if lo == hi else
-                   "are extrapolated from the table's edge (lift linear in log Re, drag a power of Re)")
+                   "are extrapolated from the table's edge (above: lift linear in log Re, drag a power of Re; "
+                   "below: the same, bounded)")
             # stacklevel: _rows -> _compute -> _evaluate_real -> Polar.evaluate -> the caller.
             warnings.warn(f"{self.name}: Reynolds numbers outside the tabulated range {self.reynolds[0]:.4g}.."
                           f"{self.reynolds[-1]:.4g} {how}; seen {real.min():.4g}..{real.max():.4g} "
@@ -379,7 +296,12 @@ class TabulatedPolar(Polar):
                 raise ValueError(f"{self.name}: cd <= 0 at the table edge Re = {10.0 ** np.real(edge[bad]):.4g}, "
                                  f"alpha = {np.degrees(np.real(a[bad])):.4g} deg: cannot extrapolate it to Re = "
                                  f"{np.real(r[bad]):.4g}")
-            extrapolated = extrapolate_log_reynolds(terms, log_re[past] - edge[past])
+            below = np.real(log_re[past]) < self._log_re[0]
+            extrapolated = np.empty((6, 2, len(past)), dtype=terms.dtype)
+            for side, bounds in ((below, LOW_REYNOLDS_BOUNDS), (~below, None)):
+                if np.any(side):
+                    extrapolated[:, :, side] = extrapolate_log_reynolds(
+                        terms[:, :, side], log_re[past][side] - edge[past][side], bounds)
             if not np.all(np.isfinite(extrapolated[0][1])):
                 raise ValueError(f"{self.name}: cd extrapolated to Re = {np.real(r[past]).min():.4g}.."
                                  f"{np.real(r[past]).max():.4g} overflows: too far from the table's Reynolds numbers")

@@ -71,7 +71,27 @@ def spline_terms(coef, grid, log_re_knots, alpha, log_re, rows):
     return out
 
 
-def extrapolate_log_reynolds(edge, delta):
+def _change(slope, slope_a, slope_aa, delta, bound):
+    """A change ``g`` with ``g(0) = 0`` and ``dg/dL = slope`` at the edge, and its derivatives
+    ``g, g_a, g_aa, g_L, g_aL, g_LL``: ``delta * slope`` without ``bound``, ``bound * tanh(delta * slope / bound)``
+    with it (:func:`extrapolate_log_reynolds`)."""
+    if bound is None:
+        zero = np.zeros_like(slope + delta)
+        return delta * slope, delta * slope_a, delta * slope_aa, slope + zero, slope_a + zero, zero
+    x = delta * slope / bound
+    th = np.tanh(x)
+    sech2 = 1.0 - th * th
+    # x_a = delta slope_a / bound; d/dalpha of sech2 is -2 th sech2 x_a.
+    x_a = delta * slope_a / bound
+    return (bound * th,
+            delta * slope_a * sech2,
+            delta * sech2 * (slope_aa - 2.0 * th * slope_a * x_a),
+            slope * sech2,
+            sech2 * (slope_a - 2.0 * th * slope * x_a),
+            -2.0 * slope * slope / bound * th * sech2)
+
+
+def extrapolate_log_reynolds(edge, delta, bounds=None):
     """Lift and drag at ``d = L - L_e`` past a table edge ``L_e`` (``L = log10 Re``; :class:`TabulatedPolar`).
 
     Complex-step safe in ``edge`` and ``delta``.
@@ -83,23 +103,35 @@ def extrapolate_log_reynolds(edge, delta):
         (``[:, 0]``) and drag (``[:, 1]``, ``f > 0``) at the edge.
     delta : ndarray, shape (n,)
         ``L - L_e``.
+    bounds : tuple of float, optional
+        ``(C, K)``: the bounded continuation (used below the table), with the change of lift and of ``log cd``
+        saturating at ``C`` and ``K``::
+
+            cl = f + C tanh(d s / C),    cd = f exp(K tanh(d m / K)),   m = s / f.
+
+        Without: lift linear in ``L`` and ``log cd`` linear in ``L`` (a power law in Re; used above the table).
 
     Returns
     -------
     tuple of 6 ndarray, shape (2, n)
-        ``c, c_a, c_aa, c_L, c_aL, c_LL`` of lift and drag at ``L``: lift is linear in
-        ``L`` (``c_LL = 0``), drag ``f exp(d m)``, ``m = s / f`` (``c_LL = c m**2``).
+        ``c, c_a, c_aa, c_L, c_aL, c_LL`` of lift and drag at ``L``.  Without ``bounds``: lift is linear in
+        ``L`` (``c_LL = 0``), drag ``f exp(d m)`` (``c_LL = c m**2``).  Both forms have the edge's value and
+        slope ``s`` at ``d = 0`` and a zero second derivative of lift and ``log cd`` there.
     """
+    lift_bound, drag_bound = (None, None) if bounds is None else bounds
     f, f_a, f_aa, s, s_a, s_aa = edge[:, 0]
-    lift = (f + delta * s, f_a + delta * s_a, f_aa + delta * s_aa, s, s_a, np.zeros_like(f + delta))
+    g, g_a, g_aa, g_l, g_al, g_ll = _change(s, s_a, s_aa, delta, lift_bound)
+    lift = (f + g, f_a + g_a, f_aa + g_aa, g_l, g_al, g_ll)
     f, f_a, f_aa, s, s_a, s_aa = edge[:, 1]
-    # log cd = log f + d m, m = s / f; p_a = d(log f)/dalpha.
+    # log cd = log f + G, G the change of log cd with slope m = s / f; p_a = d(log f)/dalpha.
     m, p_a = s / f, f_a / f
     m_a = (s_a - m * f_a) / f
     m_aa = (s_aa - m * f_aa) / f - 2.0 * m_a * p_a
-    log_a, log_aa = p_a + delta * m_a, f_aa / f - p_a * p_a + delta * m_aa
-    cd = f * np.exp(delta * m)
-    drag = (cd, cd * log_a, cd * (log_aa + log_a * log_a), cd * m, cd * (m * log_a + m_a), cd * m * m)
+    big, big_a, big_aa, big_l, big_al, big_ll = _change(m, m_a, m_aa, delta, drag_bound)
+    log_a, log_aa = p_a + big_a, f_aa / f - p_a * p_a + big_aa
+    cd = f * np.exp(big)
+    drag = (cd, cd * log_a, cd * (log_aa + log_a * log_a), cd * big_l, cd * (big_l * log_a + big_al),
+            cd * big_l * big_l + cd * big_ll)
     return tuple(np.stack([x, y]) for x, y in zip(lift, drag))
 
 

@@ -72,17 +72,30 @@ def _inside_the_data(table, polar, count, rng):
 
 def test_table_matches_the_exact_curves(table):
     # The interpolant against Newton's method on the polar (H = 0 and ln Re + ln cl = x0) from the table's
-    # own point: 20,000 points inside the data.  Measured: cd/cl relative error p50 ~1e-14, p99 ~4e-11,
-    # p99.9 ~3e-10, max ~5e-9 (next to the sheets' folds, where the curves turn fastest).
+    # own point: 20,000 points inside the data.  Measured on the paper's range (Re >= 5e4): cd/cl relative
+    # error p99 ~3e-11, p99.9 ~3e-10, max ~9e-10 (next to the sheets' folds, where the curves turn fastest).
+    # The low-Reynolds tables (1e4..5e4, issue 24) turn faster (the XFOIL polars change sharply between 3e4
+    # and 5e4): p99.9 ~7e-9, max ~9e-9.  Within 0.5 % of 5e4, where the built-in surrogate's two splines
+    # meet C^1 (d2/dRe2 jumps, so a cubic Hermite in x0 is off by O(X_STEP**2) times the jump): up to ~1e-6.
     polar = default_polar()
     x0, label, point = _inside_the_data(table, polar, 20000, np.random.default_rng(7))
     alpha, ell, ok = refine(polar, x0, point["alpha"], point["ell"])
     assert ok.mean() > 0.999
     exact = path_point(polar, alpha[ok], ell[ok]).s
     error = np.abs(point["s"][ok] / exact - 1.0)
-    assert np.quantile(error, 0.999) <= 1e-9
-    assert error.max() <= 1e-8
-    np.testing.assert_allclose(point["ell"][ok], ell[ok], atol=1e-5)
+    re = np.exp(ell[ok])
+    join = np.abs(np.log(re / 5e4)) < 0.005
+    paper, low = (re >= 5e4) & ~join, (re < 5e4) & ~join
+    assert paper.sum() > 4000 and low.sum() > 4000
+    assert np.quantile(error[paper], 0.999) <= 1e-9
+    assert error[paper].max() <= 1e-8
+    assert np.quantile(error[low], 0.999) <= 1e-8
+    assert error[low].max() <= 2e-8
+    assert error[join].max() <= 2e-6
+    # ln Re of the point: within 1e-5 on the paper's range; measured 2e-5 below 5e4 and 8e-5 at the join.
+    np.testing.assert_allclose(point["ell"][ok][paper], ell[ok][paper], atol=1e-5)
+    np.testing.assert_allclose(point["ell"][ok][low], ell[ok][low], atol=5e-5)
+    np.testing.assert_allclose(point["ell"][ok][join], ell[ok][join], atol=2e-4)
 
 
 def test_sheets_are_numbered_by_angle_of_attack_and_have_a_kind(table):

@@ -1,4 +1,6 @@
 """bild-mdo design: the paper's rotor printed and written to every file format, batches."""
+import re
+
 import numpy as np
 import pytest
 
@@ -47,12 +49,15 @@ def test_zero_chord_design_writes_no_file(tmp_path, capsys):
     code, out, err = run(capsys, "design", "--ref-chord", "0.0001", "--num-radial", "8", "--csv",
                          str(tmp_path / "z.csv"))
     assert code == 2 and out == ""
-    assert err.strip().splitlines()[-1].startswith("bild-mdo design: error: the design has zero chord at 3 of 8 "
-                                                   "stations")
+    # How many stations are unloaded depends on the polar far below its data (Re ~ 1e2); that they are the
+    # outer ones, so the blade ends before R, does not.
+    last = err.strip().splitlines()[-1]
+    assert re.match(r"bild-mdo design: error: the design has zero chord at \d of 8 stations", last)
+    assert "ends before the tip radius" in last
     assert list(tmp_path.iterdir()) == []
     code, out, err = run(capsys, "design", "--ref-chord", "0.0001", "--num-radial", "8")
     assert code == 0 and "stations:" in out
-    assert "bild-mdo: warning: the design has zero chord at 3 of 8 stations" in err
+    assert re.search(r"bild-mdo: warning: the design has zero chord at \d of 8 stations", err)
 
 
 @pytest.mark.parametrize("option, target, message", [
