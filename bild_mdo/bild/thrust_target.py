@@ -102,6 +102,15 @@ class ThrustTargetComp(om.ImplicitComponent):
         rows, cols = node_wrt_node(self.options["num_nodes"])
         self.declare_partials("ref_chord", ["thrust", "thrust_target"], rows=rows, cols=cols)
 
+    def forget_history(self, ref_chord=0.15):
+        """Start the next solve as a fresh model would: from ``ref_chord`` (m) with the slope 1.
+
+        Without it a solve starts from the last solve's chord and slope: the same target to 1e-12, but not
+        bitwise (a caller that must repeat itself exactly, such as an optimiser's start, calls this first).
+        """
+        self._slope = np.ones(self.options["num_nodes"])
+        self._outputs["ref_chord"] = ref_chord
+
     def start(self):
         """Forget the brackets and passes of the last solve (called by the solver before its first pass)."""
         nn = self.options["num_nodes"]

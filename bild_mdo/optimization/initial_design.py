@@ -139,6 +139,8 @@ def bild_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, altitud
                                ("hub_radius_ratio", hub_radius / radius, None), ("ref_radius_ratio", 0.5, None),
                                ("altitude", altitude, "m"), ("thrust_target", thrust_target, "N")):
         prob.set_val(name, value, units=units)
+    # The same start for the same case, whatever was designed before (the cached model keeps its last chord).
+    prob.model.thrust_target_balance.forget_history()
     prob.run_model()
     if prob.model.feasibility.infeasible[0]:
         raise ValueError(f"initial='bild': no BILD design gives T* = {thrust_target:g} N here "

@@ -94,7 +94,11 @@ def run_optimization(prob):
     """Run the optimisation of the case loaded in ``prob`` and collect the result.
 
     Scales the design variables (``scaling='hessian'``), applies the case's
-    bounds and runs the driver with single-threaded BLAS.  A BEM solve that
+    bounds and runs the driver with single-threaded BLAS.  The first inflow
+    solve of the run is cold (:func:`forget_inflow_history`), so the result
+    depends only on the loaded case and design, never on what the problem
+    solved before: a reused problem gives bit for bit what a fresh one
+    gives.  A BEM solve that
     fails at a trial point (``om.AnalysisError``, which SLSQP cannot back off
     from) ends the run as not converged; the error is in ``status``.
 
@@ -130,10 +134,35 @@ def _slsqp(prob, restarts):
         return optimize_in_lockstep(ModelPool(meta, base=prob), [spec], _settings(meta, restarts))[0]
 
 
+def forget_inflow_history(prob):
+    """Make the next inflow solve of ``prob`` cold: forget the angles the warm start would begin from.
+
+    With ``BEMOptimizationGroup(warm_start=True)`` (the default) each inflow
+    solve starts from the previous solve's angles.  Warm and cold roots agree
+    only to solver tolerance (``|R| <= 1e-13``), and an optimiser amplifies
+    such differences: left in place, the angles of the previous case of a
+    reused problem changed the next case's Ipopt run (one verification case
+    took 866, 498 or 314 iterations, by what ran before it in its worker),
+    so a sweep's numbers depended on how its cases were grouped into
+    processes.  The SLSQP engine starts every case cold in the same way
+    (:meth:`~bild_mdo.optimization.batch_model.BatchModel.evaluate`).
+
+    Parameters
+    ----------
+    prob : om.Problem
+        From :func:`~bild_mdo.optimization.problem.build_optimization_problem`.
+    """
+    inflow = prob.model.rotor.bem.inflow
+    if inflow.options["warm_start"]:
+        # InflowComp keeps its previous solve here (bild_mdo.bem.inflow, option warm_start); None is a cold solve.
+        inflow._previous_phi = None
+
+
 def _run_driver(prob):
     meta = prob._bild_optimization
     optimizer = meta["optimizer"]
     start = time.perf_counter()
+    forget_inflow_history(prob)
     try:
         with single_threaded_blas():
             if meta["scaling"] == "hessian":
@@ -183,7 +212,9 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
         the case options (``initial``, ``bild_chord``, ``bild_twist``,
         ``reference_chord``, ``energy_loss_ref``) are read from ``options``.
         Reusing skips the set-up (0.05-0.2 s, several seconds for the
-        first problem of a process, which builds the polar).
+        first problem of a process, which builds the polar) and gives the
+        same result, bit for bit, as a fresh problem, whatever it solved
+        before (:func:`forget_inflow_history`).
     restarts : int
         How often to restart the optimiser from where it stopped when it
         reports failure (not after a failed BEM analysis): a restart

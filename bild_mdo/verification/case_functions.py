@@ -34,7 +34,9 @@ from .starts import combine_starts
 _MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
 
 # Problems already set up in this process, by configuration: setting one up costs more than a
-# warm-started optimisation, and every case of a sweep has the same configuration.
+# warm-started optimisation, and every case of a sweep has the same configuration.  A reused problem keeps no
+# state from its previous case (bild_mdo.optimization.run.forget_inflow_history), so a case's row does not depend
+# on the worker or the chunk it ran in.
 _PROBLEMS = {}
 
 

@@ -34,3 +34,12 @@ def test_the_bild_start_is_the_papers_design_for_the_thrust():
 def test_an_unreachable_thrust_says_what_to_do():
     with pytest.raises(ValueError, match="initial='bild': no BILD design gives T\\* = 1e\\+06 N.*initial='linear'"):
         bild_mdo.optimize_rotor(0.0, 800.0, 1.0, 0.2, 1e6)
+
+
+def test_the_bild_start_does_not_depend_on_what_was_designed_before():
+    case = (10.0, 800.0, 1.0, 0.2, 300.0, 0.0, 30, 3, "naca4412", "tip_hub")
+    alone = bild_initial_design(*case)
+    bild_initial_design(0.0, 1200.0, 1.4, 0.25, 900.0, 2000.0, 30, 3, "naca4412", "tip_hub")
+    again = bild_initial_design(*case)
+    np.testing.assert_array_equal(alone[0], again[0])
+    np.testing.assert_array_equal(alone[1], again[1])
