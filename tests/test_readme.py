@@ -6,11 +6,17 @@ import numpy as np
 import pytest
 
 README = pathlib.Path(__file__).resolve().parents[1] / "README.md"
-SNIPPETS = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
+TEXT = README.read_text()
+SNIPPETS = re.findall(r"```python\n(.*?)```", TEXT, flags=re.S)
 
 
-def test_readme_has_its_three_snippets():
-    assert len(SNIPPETS) == 3
+def test_readme_has_its_two_snippets():
+    assert len(SNIPPETS) == 2
+
+
+def test_readme_is_the_front_door():
+    # Issue 25: at most 150 lines; the details live on the documentation site.
+    assert len(TEXT.splitlines()) <= 150
 
 
 @pytest.mark.parametrize("index", range(len(SNIPPETS)))
@@ -18,12 +24,7 @@ def test_snippet_runs(index, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     namespace = {}
     exec(compile(SNIPPETS[index], f"README snippet {index}", "exec"), namespace)
-    if "mp" in namespace:
-        mp = namespace["mp"]
-        # The trimmed conditions meet their required thrust; hover FM of the BILD blade is below 1 (momentum theory).
-        assert np.allclose(mp.get_val("thrust", units="N"), [700.0, 150.0], rtol=1e-8)
-        assert 0.0 < mp.get_val("design_figure_of_merit")[0] < 1.0
-    elif "prob" in namespace:
+    if "prob" in namespace:
         prob = namespace["prob"]
         # The sizing snippet's equality constraints hold at its optimum.
         assert np.allclose(prob.get_val("thrust", units="N"), [1500.0, 800.0], rtol=1e-6)
@@ -34,3 +35,4 @@ def test_snippet_runs(index, tmp_path, monkeypatch, capsys):
         chord_at_ref = np.interp(0.75, res.radii.ravel(), res.chord.ravel())
         assert chord_at_ref == pytest.approx(0.15, rel=2e-2)
         assert (tmp_path / "blade.csv").exists()
+        assert np.shape(namespace["batch"].thrust) == (4,)

@@ -1,0 +1,54 @@
+"""Build the documentation site: ``python docs/build.py [OUTDIR]`` (default ``docs/_build``).
+
+The sources are copied to ``OUTDIR/source`` first, so the pages the build generates (the API
+reference) and the executed notebooks never touch the repository; the site goes to ``OUTDIR/html``
+and the warnings to ``OUTDIR/warnings.txt``.  Sphinx runs with ``-W --keep-going -n``: any
+warning, broken cross-reference or failing example makes the build fail (exit status 1).
+"""
+import os
+import pathlib
+import shutil
+import subprocess
+import sys
+import time
+
+DOCS = pathlib.Path(__file__).resolve().parent
+REPO = DOCS.parent
+
+
+def build(outdir, jobs="2", quiet=False):
+    """Build the site into ``outdir``; return ``(returncode, warnings text, seconds)``."""
+    outdir = pathlib.Path(outdir).resolve()
+    source = outdir / "source"
+    if source.exists():
+        shutil.rmtree(source)
+    shutil.copytree(DOCS, source, ignore=shutil.ignore_patterns("_build", "__pycache__", "*.pyc"))
+    # Project files the pages include (from the repository root, outside docs/).
+    shutil.copy(REPO / "CHANGELOG.md", source / "changelog_source.md")
+    shutil.copy(REPO / "CITATION.cff", source / "citation_source.cff")
+    warnings = outdir / "warnings.txt"
+    env = dict(os.environ, BILD_MDO_REPO=str(REPO), BILD_MDO_DOCS_SOURCE=str(source))
+    cmd = [sys.executable, "-m", "sphinx", "-b", "html", "-E", "-W", "--keep-going", "-n", "-j", str(jobs),
+           "-w", str(warnings), "-d", str(outdir / "doctrees"), str(source), str(outdir / "html")]
+    if quiet:
+        cmd.insert(3, "-q")
+    start = time.perf_counter()
+    proc = subprocess.run(cmd, env=env, cwd=outdir)
+    seconds = time.perf_counter() - start
+    text = warnings.read_text() if warnings.exists() else ""
+    return proc.returncode, text, seconds
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else argv
+    outdir = pathlib.Path(argv[0]) if argv else DOCS / "_build"
+    outdir.mkdir(parents=True, exist_ok=True)
+    code, text, seconds = build(outdir)
+    count = sum(1 for line in text.splitlines() if "WARNING" in line or "ERROR" in line)
+    status = "built" if code == 0 else f"FAILED (exit {code})"
+    print(f"docs: {status}: {outdir / 'html' / 'index.html'} in {seconds:.0f} s, {count} warnings")
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())
