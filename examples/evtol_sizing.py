@@ -579,10 +579,13 @@ def print_summary(result, objective="gross_mass", optimizer="slsqp"):
           f"{o['hover_electric_power'][0]:.1f} kW, cruise {o['cruise_electric_power'][0]:.1f} kW")
     print(f"  {'':12s}{'radius m':>10s}{'rpm':>9s}{'c_ref m':>9s}{'T N':>9s}{'T_req N':>9s}{'P kW':>8s}"
           f"{'FM':>7s}{'eta':>7s}{'sigma':>7s}{'M_tip':>7s}")
+    # The lift rotor hovers (figure of merit); the pusher flies (efficiency): each other metric means nothing there.
     for i, label in enumerate(("lift rotor", "pusher")):
+        merit, eta = (f"{o['figure_of_merit'][i]:7.3f}", f"{'n/a':>7s}") if i == 0 else \
+            (f"{'n/a':>7s}", f"{o['efficiency'][i]:7.3f}")
         print(f"  {label:12s}{o['radius'][i]:10.3f}{o['rpm'][i]:9.0f}{o['ref_chord'][i]:9.4f}{o['thrust'][i]:9.1f}"
-              f"{o['required_thrust'][i]:9.1f}{o['power'][i]:8.2f}{o['figure_of_merit'][i]:7.3f}"
-              f"{o['efficiency'][i]:7.3f}{o['solidity'][i]:7.3f}{o['tip_mach'][i]:7.3f}")
+              f"{o['required_thrust'][i]:9.1f}{o['power'][i]:8.2f}{merit}{eta}"
+              f"{o['solidity'][i]:7.3f}{o['tip_mach'][i]:7.3f}")
 
 
 if __name__ == "__main__":
