@@ -48,6 +48,9 @@ class Fluid(NamedTuple):
                 f"a {self.speed_of_sound:.5g} m/s)")
 
 
+#: The properties a fluid gives the models, by their input names.
+PROPERTIES = ("rho", "mu", "speed_of_sound")
+
 _SEA_LEVEL = isa(0.0, derivatives=False)
 
 #: The named fluids (module docstring for their sources).
@@ -106,12 +109,12 @@ def fluid_from_text(text):
 
 def fluid_point(fluid):
     """The design-point entries of a geometry file that keep a fluid (``rho``, ``mu``, ``speed_of_sound``)."""
-    return {name: float(getattr(fluid, name)) for name in ("rho", "mu", "speed_of_sound")}
+    return {name: float(getattr(fluid, name)) for name in PROPERTIES}
 
 
 def point_fluid(design_point):
     """The :class:`Fluid` a geometry's design point keeps (None where it keeps an altitude or nothing)."""
-    if "altitude" in design_point or not {"rho", "mu", "speed_of_sound"} <= set(design_point):
+    if "altitude" in design_point or not set(PROPERTIES) <= set(design_point):
         return None
     return resolve_fluid(Fluid(design_point["rho"], design_point["mu"], design_point["speed_of_sound"],
                                "the design's fluid"))
@@ -119,4 +122,4 @@ def point_fluid(design_point):
 
 def fluid_arrays(fluid, size):
     """``{'rho', 'mu', 'speed_of_sound'}`` of a resolved fluid as arrays of ``size`` (for the groups' inputs)."""
-    return {name: np.full(size, float(getattr(fluid, name))) for name in ("rho", "mu", "speed_of_sound")}
+    return {name: np.full(size, value) for name, value in fluid_point(fluid).items()}

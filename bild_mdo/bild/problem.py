@@ -8,17 +8,15 @@ hundred MB of vectors and Jacobians, so only a handful are kept.
 """
 from __future__ import annotations
 
-import collections
-
 import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.bild.bild_group import BILDGroup
+from bild_mdo.utils.problem_cache import ProblemCache
 
 # Set-up problems by configuration, least recently used first.
-_PROBLEM_CACHE = collections.OrderedDict()
-_PROBLEM_CACHE_SIZE = 4
+_PROBLEM_CACHE = ProblemCache(size=4)
 
 
 def clear_model_cache():
@@ -28,24 +26,20 @@ def clear_model_cache():
 
 def _bild_problem(num_nodes, num_radial, num_blades, polar, loss_model, chord_form, correction, input_mode,
                   on_infeasible, thrust_target, section_point, ideal_loading, use_atmosphere):
-    key = (num_nodes, num_radial, num_blades, id(polar), loss_model, chord_form, correction, input_mode,
-           on_infeasible, thrust_target, section_point, ideal_loading, use_atmosphere)
-    hit = _PROBLEM_CACHE.get(key)
-    # id() can be reused after an object dies; the stored reference proves it is the same polar.
-    if hit is not None and hit[0] is polar:
-        _PROBLEM_CACHE.move_to_end(key)
-        return hit[1]
-    group = BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades, polar=polar,
-                      loss_model=loss_model, chord_form=chord_form, root_chord_correction=correction,
-                      input_mode=input_mode, on_infeasible=on_infeasible, thrust_target=thrust_target,
-                      section_point=section_point, ideal_loading=ideal_loading, use_atmosphere=use_atmosphere)
-    prob = om.Problem(group, reports=False)
-    prob.setup(check=False)
-    prob.final_setup()
-    _PROBLEM_CACHE[key] = (polar, prob)
-    while len(_PROBLEM_CACHE) > _PROBLEM_CACHE_SIZE:
-        _PROBLEM_CACHE.popitem(last=False)
-    return prob
+    def make():
+        group = BILDGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades, polar=polar,
+                          loss_model=loss_model, chord_form=chord_form, root_chord_correction=correction,
+                          input_mode=input_mode, on_infeasible=on_infeasible, thrust_target=thrust_target,
+                          section_point=section_point, ideal_loading=ideal_loading,
+                          use_atmosphere=use_atmosphere)
+        prob = om.Problem(group, reports=False)
+        prob.setup(check=False)
+        prob.final_setup()
+        return prob
+
+    key = (num_nodes, num_radial, num_blades, loss_model, chord_form, correction, input_mode, on_infeasible,
+           thrust_target, section_point, ideal_loading, use_atmosphere)
+    return _PROBLEM_CACHE.get(key, polar, make)
 
 
 def bild_problem(num_nodes=1, num_radial=30, num_blades=3, airfoil="naca4412", loss_model="tip_hub",

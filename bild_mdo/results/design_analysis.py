@@ -26,14 +26,13 @@ cached, set-up problem.
 """
 from __future__ import annotations
 
-import collections
-
 import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.performance import rotor_performance
 from bild_mdo.fluid import fluid_arrays
+from bild_mdo.utils.problem_cache import ProblemCache
 
 #: Per-design values of the analysis in a :class:`~bild_mdo.results.design_result.DesignResult`: name -> units
 #: (the BEM analysis's ``thrust``, ``torque``, ``power``, ``efficiency``, ``figure_of_merit``).
@@ -41,26 +40,20 @@ ANALYSIS_UNITS = {"bem_thrust": "N", "bem_torque": "N*m", "bem_power": "W", "bem
                   "bem_figure_of_merit": None}
 
 # Set-up analysis problems by configuration, least recently used first (as bild.problem keeps BILD's).
-_CACHE = collections.OrderedDict()
-_CACHE_SIZE = 4
+_CACHE = ProblemCache(size=4)
 
 
 def _problem(num_nodes, num_radial, num_blades, polar, loss_model, use_atmosphere):
-    key = (num_nodes, num_radial, num_blades, id(polar), loss_model, use_atmosphere)
-    hit = _CACHE.get(key)
-    if hit is not None and hit[0] is polar:
-        _CACHE.move_to_end(key)
-        return hit[1]
-    # BILD's stations are the midpoints of equal annuli from hub to tip, the analysis group's default.
-    prob = om.Problem(BEMAnalysisGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades,
-                                       polar=polar, loss_model=loss_model, on_invalid="ignore",
-                                       use_atmosphere=use_atmosphere), reports=False)
-    prob.setup(check=False)
-    prob.final_setup()
-    _CACHE[key] = (polar, prob)
-    while len(_CACHE) > _CACHE_SIZE:
-        _CACHE.popitem(last=False)
-    return prob
+    def make():
+        # BILD's stations are the midpoints of equal annuli from hub to tip, the analysis group's default.
+        prob = om.Problem(BEMAnalysisGroup(num_nodes=num_nodes, num_radial=num_radial, num_blades=num_blades,
+                                           polar=polar, loss_model=loss_model, on_invalid="ignore",
+                                           use_atmosphere=use_atmosphere), reports=False)
+        prob.setup(check=False)
+        prob.final_setup()
+        return prob
+
+    return _CACHE.get((num_nodes, num_radial, num_blades, loss_model, use_atmosphere), polar, make)
 
 
 def analyze_designs(values, outputs, feasible, num_blades, polar, loss_model, fluid=None):

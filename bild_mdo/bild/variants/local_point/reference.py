@@ -8,9 +8,8 @@ from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.variants.exact.exact_ideal_loading import check_reference_annulus
 from bild_mdo.bild.feasibility import report_infeasible
 from bild_mdo.bild.variants.local_point.gap import force_factors, gap_jets, reference_reynolds, take_reference, terms
-from bild_mdo.bild.variants.local_point.load_path_model import StationFlow
 from bild_mdo.bild.variants.local_point.options import declare_local_options
-from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, table_jets
+from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, station_flow, table_jets
 from bild_mdo.utils.jet import Jet, eliminate, jacobian, variable
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
 from bild_mdo.utils.sparsity import node_wrt_node
@@ -188,11 +187,9 @@ class LocalReferenceComp(om.ExplicitComponent):
                    "cl_star_ref": jets.cl, "cd_star_ref": jets.cd, "load_reynolds_ref": jets.load_reynolds}
         lam = None
         if self.options["ideal_loading"] == "exact":
-            opts = self.options
-            flow = StationFlow(np.ones(at.size), ref.v_axial, ref.v_theta, ref.r, ref.radius, ref.hub_radius, ref.rho,
-                        ref.mu, opts["num_blades"], opts["loss_model"], opts["chord_form"])
+            flow = station_flow(ref)._replace(lam=np.ones(at.size))
             re_real = np.real(jets.reynolds.v)
-            item = terms(opts["polar"], solution.phi[at], solution.alpha[at], re_real, flow)
+            item = terms(self.options["polar"], solution.phi[at], solution.alpha[at], re_real, flow)
             ratio = item.n_tot / item.d_tot
             # Re is a function of the inputs here: its partial chained, its complex part carried to first order.
             d = {k: v for k, v in ratio.d.items() if k != "re"}
