@@ -314,8 +314,8 @@ class BILDGroup(om.Group):
         if opts["thrust_target"]:
             #: The balance of the thrust-target solve (read by ReferenceChordSolver).
             self.thrust_target_balance = self.add_subsystem(
-                "thrust_target_balance", ThrustTargetComp(**node, **checked),
-                promotes_inputs=["thrust", "thrust_target"], promotes_outputs=["ref_chord"])
+                "thrust_target_balance", ThrustTargetComp(**size, **checked),
+                promotes_inputs=["dthrust_dr", "dr", "thrust_target"], promotes_outputs=["ref_chord"])
             self.nonlinear_solver = ReferenceChordSolver()
         self.add_subsystem("feasibility_check", FeasibilityComp(**node, ledger=self.feasibility,
                                                                 on_infeasible=opts["on_infeasible"]),

@@ -4,7 +4,8 @@ BILD's free parameter is the reference chord ``c_ref`` (Algorithm 1): the
 thrust of the ideal rotor grows with it, close to ``T ~ c_ref**p`` with
 ``p`` about 0.8-1 over two decades of ``c_ref``.  ``BILDGroup(thrust_target=True)``
 makes ``ref_chord`` the state of :class:`ThrustTargetComp`, whose residual is
-``R = T / T* - 1``, and solves it with :class:`ReferenceChordSolver`: passes
+``R = T / T* - 1`` (``T = sum(dT/dr dr)``, the thrust of the stations, as the
+performance sums it), and solves it with :class:`ReferenceChordSolver`: passes
 of the feed-forward chain, after each of which every design takes its own
 bracketed quasi-Newton step in ``y = ln c_ref`` on ``g = ln(T / T*)``::
 
@@ -41,7 +42,7 @@ from openmdao.solvers.solver import NonlinearSolver
 
 from bild_mdo.bild.feasibility import declare_feasibility_option
 from bild_mdo.utils.options import declare_size_options
-from bild_mdo.utils.sparsity import node_wrt_node
+from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
 
 _MAX_FACTOR = np.log(10.0)
 # Accepted secant slopes d ln T / d ln c_ref (the physical one is about 0.8-1).
@@ -62,8 +63,8 @@ class ThrustTargetComp(om.ImplicitComponent):
 
     Options
     -------
-    num_nodes : int
-        Designs.
+    num_nodes, num_radial : int
+        Designs and stations.
     feasibility : FeasibilityLedger or None
         The group's ledger (the designs whose target is not reached are recorded there).
     rtol : float
@@ -73,8 +74,11 @@ class ThrustTargetComp(om.ImplicitComponent):
 
     Inputs
     ------
-    thrust[nn] (N), thrust_target[nn] (N)
-        Thrust of the ideal rotor and its target ``T* > 0``.
+    dthrust_dr[nn, nr] (N/m), dr[nn, nr] (m)
+        Thrust per unit span of the stations and their widths (the thrust ``T = sum(dT/dr dr)``: summed here,
+        so that the passes of the solve need not run the performance).
+    thrust_target[nn] (N)
+        Target thrust ``T* > 0``.
 
     Outputs
     -------
@@ -83,14 +87,15 @@ class ThrustTargetComp(om.ImplicitComponent):
     """
 
     def initialize(self):
-        declare_size_options(self.options, radial=False)
+        declare_size_options(self.options)
         declare_feasibility_option(self.options)
         self.options.declare("rtol", types=float, default=1e-12, desc="relative thrust tolerance |ln(T/T*)|")
         self.options.declare("maxiter", types=int, default=60, desc="passes before a design is given up")
 
     def setup(self):
-        nn = self.options["num_nodes"]
-        self.add_input("thrust", val=np.ones(nn), units="N", desc="rotor thrust T")
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        self.add_input("dthrust_dr", val=np.ones((nn, nr)), units="N/m", desc="thrust per unit span, all blades")
+        self.add_input("dr", val=np.ones((nn, nr)), units="m", desc="radial width of each station")
         self.add_input("thrust_target", val=np.ones(nn), units="N", desc="target thrust T* (> 0)")
         self.add_output("ref_chord", val=np.full(nn, 0.15), units="m", lower=0.0,
                         desc="chord at the reference station c_ref, solved for T = T*")
@@ -99,8 +104,11 @@ class ThrustTargetComp(om.ImplicitComponent):
         self.start()
 
     def setup_partials(self):
-        rows, cols = node_wrt_node(self.options["num_nodes"])
-        self.declare_partials("ref_chord", ["thrust", "thrust_target"], rows=rows, cols=cols)
+        nn, nr = self.options["num_nodes"], self.options["num_radial"]
+        rows, cols = node_wrt_node(nn)
+        self.declare_partials("ref_chord", "thrust_target", rows=rows, cols=cols)
+        rows, cols = node_wrt_dist(nn, nr)
+        self.declare_partials("ref_chord", ["dthrust_dr", "dr"], rows=rows, cols=cols)
 
     def forget_history(self, ref_chord=0.15):
         """Start the next solve as a fresh model would: from ``ref_chord`` (m) with the slope 1.
@@ -124,13 +132,19 @@ class ThrustTargetComp(om.ImplicitComponent):
         #: True once every design is converged or given up (the last pass was consistent).
         self.finished = False
 
+    @staticmethod
+    def thrust(inputs):
+        """``T = sum(dT/dr dr)`` (N) of every design."""
+        return np.sum(inputs["dthrust_dr"] * inputs["dr"], axis=1)
+
     def apply_nonlinear(self, inputs, outputs, residuals):
-        residuals["ref_chord"] = inputs["thrust"] / inputs["thrust_target"] - 1.0
+        residuals["ref_chord"] = self.thrust(inputs) / inputs["thrust_target"] - 1.0
 
     def linearize(self, inputs, outputs, partials):
         target = inputs["thrust_target"]
-        partials["ref_chord", "thrust"] = 1.0 / target
-        partials["ref_chord", "thrust_target"] = -inputs["thrust"] / target ** 2
+        partials["ref_chord", "dthrust_dr"] = (inputs["dr"] / target[:, None]).ravel()
+        partials["ref_chord", "dr"] = (inputs["dthrust_dr"] / target[:, None]).ravel()
+        partials["ref_chord", "thrust_target"] = -self.thrust(inputs) / target ** 2
 
     def solve_nonlinear(self, inputs, outputs):
         target = inputs["thrust_target"]
@@ -146,7 +160,7 @@ class ThrustTargetComp(om.ImplicitComponent):
 
     def _step(self, inputs, outputs, ledger):
         """One pass: update the brackets, take the steps, decide whether this pass is the last."""
-        thrust, target = inputs["thrust"], inputs["thrust_target"]
+        thrust, target = self.thrust(inputs), inputs["thrust_target"]
         key, jump_key = f"{self.pathname}:target", f"{self.pathname}:jump"
         ledger.record(key, np.zeros(thrust.shape, dtype=bool), "", {})
         ledger.record(jump_key, np.zeros(thrust.shape, dtype=bool), "", {})
@@ -240,10 +254,54 @@ class ReferenceChordSolver(NonlinearSolver):
     """Passes of the BILD chain until :class:`ThrustTargetComp` has converged or given up every design.
 
     The group names its balance component in the attribute ``thrust_target_balance``;
-    the number of passes is bounded by that component's ``maxiter``.
+    the number of passes is bounded by that component's ``maxiter``.  The first pass runs the
+    subsystems before the balance; the later passes only the loop of ``ref_chord`` (the subsystems
+    that depend on it and feed the thrust or check the feasibility of a design): the others are upstream of
+    ``ref_chord`` and unchanged.
+    The subsystems that depend on ``ref_chord`` without feeding the thrust (the local Mach number),
+    and those after the balance (the feasibility check), run once, after the last pass.
     """
 
     SOLVER = "NL: BILD ref chord"
+
+    def _partition(self, system, balance):
+        """``(first, loop, tail)`` names of the subsystems (module docstring), from the connections."""
+        prefix = system.pathname + "." if system.pathname else ""
+        edges, back = {}, {}
+        for target, source in system._conn_global_abs_in2out.items():
+            if not (target.startswith(prefix) and source.startswith(prefix)):
+                continue
+            a, b = source[len(prefix):].split(".", 1)[0], target[len(prefix):].split(".", 1)[0]
+            if a != b:
+                edges.setdefault(a, set()).add(b)
+                back.setdefault(b, set()).add(a)
+
+        def reach(start, graph):
+            seen, todo = set(), [start]
+            while todo:
+                for name in graph.get(todo.pop(), ()):
+                    if name not in seen:
+                        seen.add(name)
+                        todo.append(name)
+            return seen
+
+        downstream, feeds = reach(balance.name, edges), reach(balance.name, back)
+        order = [sub.name for sub in system._subsystems_myproc]
+        after = set(order[order.index(balance.name) + 1:])
+        # A check that records into the feasibility ledger (the chord's force coefficient) steers the search.
+        checks = {sub.name for sub in system._subsystems_myproc
+                  if "feasibility" in sub.options and sub.options["feasibility"] is not None}
+        loop = (downstream & (feeds | checks)) - after | {balance.name}
+        tail = ((downstream - feeds) | after) - loop
+        first = set(order) - tail
+        return first, loop, tail
+
+    def _run(self, system, names):
+        for subsys in system._relevance.filter(system._all_subsystem_iter()):
+            if subsys.name in names:
+                system._transfer("nonlinear", "fwd", subsys.name)
+                if subsys._is_local:
+                    subsys._solve_nonlinear()
 
     def solve(self):
         system = self._system()
@@ -253,15 +311,19 @@ class ReferenceChordSolver(NonlinearSolver):
             # Components that can start from their last solution (LocalStationComp): each pass after the
             # first starts every station from its state in the pass before (a design on its own, as in a batch).
             self._warm = [sub for sub in system.system_iter(recurse=True) if hasattr(sub, "warm_start")]
+            self._parts = self._partition(system, balance)
+        first, loop, tail = self._parts
         try:
             for self._iter_count in range(balance.options["maxiter"] + 2):
-                self._gs_iter()
+                self._run(system, first if self._iter_count == 0 else loop)
                 if balance.finished:
-                    return
+                    break
                 for sub in self._warm:
                     sub.warm_start = True
+            else:
+                raise om.AnalysisError(f"{system.msginfo}: the reference-chord solve did not finish")
         finally:
             balance.options["feasibility"].deferred = False
             for sub in self._warm:
                 sub.warm_start = False
-        raise om.AnalysisError(f"{system.msginfo}: the reference-chord solve did not finish")
+        self._run(system, tail)

@@ -94,11 +94,12 @@ class _PiecewiseThrust(om.ExplicitComponent):
 
     def setup(self):
         self.add_input("ref_chord", val=np.full(3, 0.05), units="m")
-        self.add_output("thrust", val=np.ones(3), units="N")
+        self.add_output("dthrust_dr", val=np.ones((3, 1)), units="N/m")
 
     def compute(self, inputs, outputs):
         c = inputs["ref_chord"]
-        outputs["thrust"] = 1000.0 * c + np.where(c > 0.1, self.options["jump"], 0.0)
+        # One station of width dr = 1 m (the balance's default): dT/dr in N/m is the thrust in N.
+        outputs["dthrust_dr"] = (1000.0 * c + np.where(c > 0.1, self.options["jump"], 0.0))[:, None]
 
 
 class _JumpGroup(om.Group):
@@ -109,7 +110,7 @@ class _JumpGroup(om.Group):
         self.feasibility = FeasibilityLedger(3)
         self.add_subsystem("thrust", _PiecewiseThrust(jump=self.options["jump"]), promotes=["*"])
         self.thrust_target_balance = self.add_subsystem(
-            "balance", ThrustTargetComp(num_nodes=3, feasibility=self.feasibility), promotes=["*"])
+            "balance", ThrustTargetComp(num_nodes=3, num_radial=1, feasibility=self.feasibility), promotes=["*"])
         self.nonlinear_solver = ReferenceChordSolver()
 
 
@@ -126,6 +127,33 @@ def test_a_jump_of_the_thrust_is_never_taken_for_a_solution(jump, targets, reach
     prob.run_model()
     feasible = ~prob.model.feasibility.infeasible
     np.testing.assert_array_equal(feasible, reached)
-    np.testing.assert_allclose(prob.get_val("thrust")[feasible], np.array(targets)[feasible], rtol=1e-12)
+    np.testing.assert_allclose(prob.get_val("dthrust_dr")[feasible, 0], np.array(targets)[feasible], rtol=1e-12)
     for status in prob.model.feasibility.status()[~feasible]:
         assert status.startswith("thrust target in a jump of the design")
+
+
+@pytest.mark.parametrize("section_point, ideal_loading", [("reference", "paper"), ("local", "exact")])
+def test_passes_rerun_only_the_loop_of_the_reference_chord(section_point, ideal_loading):
+    # ReferenceChordSolver runs the subsystems upstream of ref_chord once, the loop (reference station ->
+    # stations -> loads -> balance) once per pass, and what only depends on the loop (chord correction,
+    # performance, Mach number, feasibility) once after the last pass, which is consistent: the performance's
+    # thrust is the target, and the design is the one a run at the solved ref_chord gives.
+    from bild_mdo.airfoil import naca4412
+    inputs, _ = _designs("cruise", n=3, seed=4)
+    options = dict(polar=naca4412(), section_point=section_point, ideal_loading=ideal_loading,
+                   on_infeasible="flag")
+    prob = _run(inputs, thrust_target=np.array([400.0, 900.0, 1500.0]), **options)
+    model = prob.model
+    passes = model.thrust_target_balance._passes
+    assert passes >= 3
+    counts = {sub.name: sub.iter_count for sub in model._subsystems_myproc}
+    for name in ("atmosphere", "geometry", "stations", "rotational_speed"):
+        assert counts[name] == 1, name
+    for name in ("performance", "local_mach", "root_chord_correction", "feasibility_check"):
+        assert counts[name] == 1, name
+    assert counts["momentum_loads"] == counts["chord"] == counts["thrust_target_balance"] == passes
+    assert (prob.get_val("feasible") > 0.5).all()
+    np.testing.assert_allclose(prob.get_val("thrust"), [400.0, 900.0, 1500.0], rtol=1e-12)
+    direct = _run(inputs, ref_chord=prob.get_val("ref_chord"), **options)
+    for name in ("thrust", "torque", "chord", "twist", "mach"):
+        np.testing.assert_allclose(prob.get_val(name), direct.get_val(name), rtol=1e-12, atol=1e-14)
