@@ -6,12 +6,14 @@ using blade element momentum theory", AIAA Journal 61(9), 2023.
 The public API is re-exported here::
 
     from bild_mdo import BILDGroup, BEMAnalysisGroup, analyze_rotor, design_rotor, naca4412, optimize_rotor
+    from bild_mdo import RotorNoiseGroup, rotor_noise    # rotor noise at observers (bild_mdo.acoustics)
 
 Importing bild_mdo needs no optional package (cyipopt, matplotlib, dask):
 :class:`IpoptDriver` imports cyipopt only when a driver is made.
 """
 __version__ = "0.1.0"
 
+from bild_mdo.acoustics.rotor_noise_group import RotorNoiseGroup
 from bild_mdo.airfoil import (AnalyticPolar, CompressiblePolar, MachTabulatedPolar, Polar, SpanwisePolar,
                               TabulatedPolar, get_polar, naca4412, resolve_polar, spanwise_polar)
 from bild_mdo.atmosphere import AtmosphereComp, isa
@@ -23,11 +25,13 @@ from bild_mdo.multipoint import MultipointRotorGroup
 from bild_mdo.optimization import optimize_rotor
 from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_design_sweep
+from bild_mdo.results.noise import NoiseResult, combine_noise, rotor_noise
 
 __all__ = [
     "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
-    "MultipointRotorGroup", "OffDesignResult", "Polar", "RotorGeometry", "SpanwisePolar", "TabulatedPolar",
-    "TipMachWarning", "__version__", "analyze_rotor", "design_mil", "design_rotor", "get_polar", "isa",
-    "naca4412", "off_design_sweep", "optimize_rotor", "read_geometry", "resolve_polar", "spanwise_polar", "write_geometry",
+    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "RotorGeometry", "RotorNoiseGroup",
+    "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "__version__", "analyze_rotor", "combine_noise",
+    "design_mil", "design_rotor", "get_polar", "isa", "naca4412", "off_design_sweep", "optimize_rotor",
+    "read_geometry", "resolve_polar", "rotor_noise", "spanwise_polar", "write_geometry",
 ]

@@ -76,6 +76,8 @@ class AnalyticPolar(Polar):
     """
 
     name = "analytic"
+    # Its defaults are those of a NACA 4412 (cl0, slope), so it stands for a 12 % thick section.
+    _thickness_ratio = 0.12
 
     cl0: float = 0.4
     cl_alpha: float = 0.9 * 2.0 * np.pi

@@ -16,6 +16,7 @@ from bild_mdo.airfoil.sources.coordinates import parse_airfoil, read_coordinates
 from bild_mdo.airfoil.sources.readers import load_builtin_polars, read_polar_files
 from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.airfoil.surrogate import TabulatedPolar
+from bild_mdo.airfoil.thickness import thickness_from_header
 
 
 #: The lowest Reynolds number of the paper's NACA 4412 tables (Appendix 7.2): the built-in surrogate is split
@@ -114,7 +115,13 @@ def _from_files(paths, name=None):
     if name is None:
         # 'naca2412_re500000.txt' -> 'naca2412'
         name = re.sub(r"[_\-. ]re[_\-=]?\d.*$", "", files[0].stem.lower(), flags=re.IGNORECASE) or files[0].stem
-    return _memo(("files", identity), lambda: tabulated_polar(read_polar_files(files), name=name))
+    polar = _memo(("files", identity), lambda: tabulated_polar(read_polar_files(files), name=name))
+    # A '# thickness_ratio = t/c' comment line of the first table file gives the section thickness.
+    first = files[0] if files[0].is_file() else next((f for f in sorted(files[0].iterdir()) if f.is_file()), None)
+    header = None if first is None else thickness_from_header(first)
+    if header is not None:
+        polar.thickness_ratio = header
+    return polar
 
 
 def _generated(spec, tool):

@@ -45,6 +45,7 @@ from typing import NamedTuple
 import numpy as np
 
 from bild_mdo.airfoil.max_lift_to_drag import max_lift_to_drag
+from bild_mdo.airfoil.thickness import checked_thickness_ratio, naca_thickness_ratio
 from bild_mdo.utils.complex_step import real_part as _real
 
 
@@ -129,6 +130,34 @@ class Polar(abc.ABC):
     varies_with_mach = False
     #: Whether the coefficients change along the span (True: ``radial_fraction`` is required).
     varies_along_span = False
+
+    @property
+    def thickness_ratio(self):
+        """Section thickness over chord ``t/c``, or None when the airfoil does not give it.
+
+        Set explicitly (``polar.thickness_ratio = 0.15``, or by a polar file), else the base polar's
+        (a compressibility correction, a frozen Reynolds number), else that of a NACA designation in
+        :attr:`name` (``naca4412`` -> 0.12); None for a polar that varies along the span (one per
+        station: :func:`bild_mdo.airfoil.thickness.section_thickness_ratio`).
+        """
+        explicit = getattr(self, "_thickness_ratio", None)
+        if explicit is not None:
+            return explicit
+        if self.varies_along_span:
+            return None
+        members = getattr(self, "polars", None)
+        base = members[0] if members is not None and len(members) == 1 else getattr(self, "base", None)
+        if isinstance(base, Polar):
+            return base.thickness_ratio
+        return naca_thickness_ratio(getattr(self, "name", None))
+
+    @thickness_ratio.setter
+    def thickness_ratio(self, value):
+        # None removes an explicit value: the airfoil's own (base, NACA designation) applies again.
+        if value is None:
+            vars(self).pop("_thickness_ratio", None)
+        else:
+            self._thickness_ratio = checked_thickness_ratio(value)
 
     def evaluate(self, alpha, reynolds, mach=None, radial_fraction=None):
         """Lift and drag coefficients with first derivatives.

@@ -14,6 +14,10 @@
   and correction, a :class:`~bild_mdo.airfoil.spanwise.SpanwisePolar` by its
   stations.
 
+A polar whose section thickness ratio was set (``polar.thickness_ratio``, used by the noise models;
+:mod:`bild_mdo.airfoil.thickness`) carries it as ``"thickness_ratio"`` in its description (not a
+built-in, whose name gives it).
+
 Floats are kept as Python floats, which ``json`` writes with their shortest
 round-trip representation, so a polar written to JSON and read back gives
 the same numbers bit for bit.
@@ -31,6 +35,7 @@ from bild_mdo.airfoil.mach_surrogate import MachTabulatedPolar, tabulated_polar
 from bild_mdo.airfoil.sources.polar_data import PolarData
 from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.airfoil.surrogate import TabulatedPolar
+from bild_mdo.airfoil.thickness import checked_thickness_ratio
 
 __all__ = ["polar_from_dict", "polar_to_dict"]
 
@@ -56,6 +61,14 @@ def polar_to_dict(polar):
         A polar that cannot be described by data (a user's own Polar
         subclass, or a surrogate made without its tables).
     """
+    description = _describe(polar)
+    explicit = vars(polar).get("_thickness_ratio")
+    if explicit is not None and description["type"] != "builtin":
+        description["thickness_ratio"] = float(explicit)
+    return description
+
+
+def _describe(polar):
     for name, factory in _REGISTRY.items():
         if name != "analytic" and polar is factory():
             return {"type": "builtin", "name": name}
@@ -86,6 +99,13 @@ def polar_from_dict(data):
     Raises ``ValueError`` (one line) for an unknown ``type`` or missing or
     malformed fields.
     """
+    polar = _rebuild(data)
+    if isinstance(data, dict) and data.get("thickness_ratio") is not None and data.get("type") != "builtin":
+        polar.thickness_ratio = checked_thickness_ratio(data["thickness_ratio"], "airfoil thickness_ratio")
+    return polar
+
+
+def _rebuild(data):
     try:
         kind = data["type"]
         if kind == "builtin":

@@ -4,6 +4,8 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.acoustics.noise_options import NOISE_OUTPUTS, declare_noise_options
+from bild_mdo.acoustics.rotor_noise_group import make_noise_group
 from bild_mdo.atmosphere import AtmosphereComp
 from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_section_options
 from bild_mdo.bem.flow_states import declare_flow_state_options
@@ -43,6 +45,15 @@ class BEMAnalysisGroup(om.Group):
         Start each inflow solve from the previous run's phi (default False; see
         :class:`~bild_mdo.bem.inflow.InflowComp`): the same roots and flow states as the cold
         solve, in about a third of the residual passes, for drivers that re-run nearby inputs.
+    noise_observers : array_like or None
+        None (default): no noise, the group exactly as without it.  An ``(n, 3)`` array of observer
+        positions (m, rotor frame, x along the thrust) adds the subsystem ``noise``
+        (:class:`~bild_mdo.acoustics.rotor_noise_group.RotorNoiseGroup`) fed by the BEM loads, angles of
+        attack and inflow speeds, with input ``observer_position[nn, n, 3]`` (default: these positions at
+        every node) and outputs ``oaspl[nn, n]``, ``oaspl_dba[nn, n]``, ``tonal_spl``, ``band_spl`` ...
+    noise_harmonics, noise_boundary_layer
+        Harmonics of the tonal noise (default 10) and BPM boundary layer (``'tripped'``, default, or
+        ``'untripped'``), with ``noise_observers``.
 
     Inputs
     ------
@@ -80,6 +91,7 @@ class BEMAnalysisGroup(om.Group):
                              desc="station widths dr/R (with radial_fractions)")
         self.options.declare("warm_start", types=bool, default=False,
                              desc="start each inflow solve from the previous run's phi (InflowComp)")
+        declare_noise_options(self.options)
 
     def setup(self):
         opts = self.options
@@ -109,6 +121,10 @@ class BEMAnalysisGroup(om.Group):
                            promotes_inputs=["dthrust_dr", "dtorque_dr", "dr", "chord", "v_axial", "rpm",
                                             "radius", "rho", "speed_of_sound"],
                            promotes_outputs=list(PERFORMANCE_OUTPUTS))
+        noise = make_noise_group(opts, nn, nr, opts["num_blades"], opts["polar"])
+        if noise is not None:
+            # Its inputs are the BEM outputs and inputs of the same names (rpm, radii, alpha, inflow_speed ...).
+            self.add_subsystem("noise", noise, promotes_inputs=["*"], promotes_outputs=list(NOISE_OUTPUTS))
 
         self.set_input_defaults("v_axial", val=np.zeros(nn), units="m/s")
         self.set_input_defaults("rpm", val=np.full(nn, 1000.0), units="rpm")

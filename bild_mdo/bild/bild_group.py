@@ -4,6 +4,9 @@ import numbers
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.acoustics.noise_options import NOISE_OUTPUTS, declare_noise_options
+from bild_mdo.acoustics.rotor_noise_group import make_noise_group
+from bild_mdo.acoustics.station_angle import StationAngleComp
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.atmosphere import AtmosphereComp
 from bild_mdo.fluid import FLUIDS, fluid_arrays
@@ -182,6 +185,18 @@ class BILDGroup(om.Group):
         :class:`~bild_mdo.bild.thrust_target.ReferenceChordSolver` with exact
         totals; a target out of
         reach is an infeasible design.
+    noise_observers : array_like or None
+        None (default): no noise, the group as without this option.  An ``(n, 3)`` array of observer
+        positions (m, rotor frame: x along the thrust, so an observer below a hovering lift rotor has
+        ``x < 0``) adds the subsystem ``noise``
+        (:class:`~bild_mdo.acoustics.rotor_noise_group.RotorNoiseGroup`) fed by the ideal rotor's loads,
+        chord, inflow speed and section angle of attack (``alpha_star`` at every station), with the input
+        ``observer_position[nn, n, 3]`` (default: these positions at every node) and the outputs
+        ``oaspl[nn, n]``, ``oaspl_dba[nn, n]``, ``tonal_spl``, ``band_spl`` and the mean-square pressures.
+    noise_harmonics : int
+        Blade-passage harmonics of the tonal noise (default 10).
+    noise_boundary_layer : str
+        ``'tripped'`` (default) or ``'untripped'``: BPM's boundary-layer fits.
 
     Inputs
     ------
@@ -266,6 +281,7 @@ class BILDGroup(om.Group):
         self.options.declare("ideal_loading", default="paper", values=IDEAL_LOADINGS,
                              desc="'paper': lambda and eta2 of Eqs. (22), (27); 'exact': each annulus makes "
                                   "E - lambda T stationary with the Prandtl factor F differentiated too")
+        declare_noise_options(self.options)
 
     def setup(self):
         opts = self.options
@@ -320,6 +336,16 @@ class BILDGroup(om.Group):
         self.add_subsystem("feasibility_check", FeasibilityComp(**node, ledger=self.feasibility,
                                                                 on_infeasible=opts["on_infeasible"]),
                            promotes_outputs=["feasible"])
+        noise = make_noise_group(opts, nn, nr, b, polar)
+        if noise is not None:
+            if polar.varies_along_span or opts["section_point"] == "local":
+                # alpha_star is already one angle per station.
+                self.connect("alpha_star", "alpha")
+            else:
+                self.add_subsystem("noise_alpha", StationAngleComp(**size), promotes_inputs=["alpha_star"],
+                                   promotes_outputs=["alpha"])
+            # The noise group's inputs are the chain's outputs of the same names (rpm, radii, chord, ...).
+            self.add_subsystem("noise", noise, promotes_inputs=["*"], promotes_outputs=list(NOISE_OUTPUTS))
 
         if opts["input_mode"] == "advance_ratio":
             self.set_input_defaults("advance_ratio", val=np.zeros(nn), units=None)

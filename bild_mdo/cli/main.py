@@ -7,10 +7,11 @@
     bild-mdo design --advance-ratio 1.0 --csv blade.csv --qprop blade.prop --plot blade.png
     bild-mdo design --ref-chord 0.1 0.15 0.2         # a batch of three designs in one run
     bild-mdo analyze blade.csv --advance-ratio 0 2 21 --plot eta.png
+    bild-mdo noise blade.csv --observer -150 0 0 --plot spectrum.png --directivity directivity.png
     bild-mdo verify --levels 3 --workers 2
 
 Each subcommand lives in its own module (:mod:`bild_mdo.cli.design`,
-:mod:`~bild_mdo.cli.analyze`, :mod:`~bild_mdo.cli.verify`,
+:mod:`~bild_mdo.cli.analyze`, :mod:`~bild_mdo.cli.noise`, :mod:`~bild_mdo.cli.verify`,
 :mod:`~bild_mdo.cli.demo`) with its ``HELP``, ``DESCRIPTION``, an
 ``add_<name>_arguments(parser)`` and a ``run_<name>(args, out)`` returning the
 exit code.  Errors in the arguments or from the library (``ValueError``,
@@ -30,7 +31,7 @@ import warnings
 import openmdao.api as om
 
 from bild_mdo import __version__
-from bild_mdo.cli import analyze, compare, demo, design, verify
+from bild_mdo.cli import analyze, compare, demo, design, noise, verify
 
 EXIT_USAGE = 2
 #: Exit code of an unexpected error (a bug), reported as one line; ``--debug`` shows the traceback.
@@ -41,6 +42,7 @@ COMMANDS = {
     "design": (design, design.add_design_arguments, design.run_design),
     "analyze": (analyze, analyze.add_analyze_arguments, analyze.run_analyze),
     "compare": (compare, compare.add_compare_arguments, compare.run_compare),
+    "noise": (noise, noise.add_noise_arguments, noise.run_noise),
     "verify": (verify, verify.add_verify_arguments, verify.run_verify),
     "demo": (demo, demo.add_demo_arguments, demo.run_demo),
 }
@@ -77,7 +79,7 @@ def _add_debug(parser, top_level=False):
 
 
 def build_parser():
-    """The ``bild-mdo`` argument parser (subcommands design, analyze, compare, verify, demo).
+    """The ``bild-mdo`` argument parser (subcommands design, analyze, compare, noise, verify, demo).
 
     Returns
     -------

@@ -4,6 +4,8 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.acoustics.noise_options import NOISE_OUTPUTS, declare_noise_options
+from bild_mdo.acoustics.rotor_noise_group import make_noise_group
 from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.bem.flow_states import ON_INVALID
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
@@ -16,6 +18,10 @@ from bild_mdo.utils.options import declare_size_options
 #: Inputs of the BILD design that keep their names; the operating condition gets the prefix ``design_``.
 _DESIGN_INPUTS = ("radius", "hub_radius_ratio", "ref_radius_ratio", "ref_chord")
 _DESIGN_CONDITION = ("v_axial", "rpm", "altitude")
+#: Where the noise group's inputs come from at each analysis condition (the BEM's and the blade's outputs).
+_NOISE_SOURCES = {name: f"analysis.bem.{name}" for name in ("radii", "dr", "dthrust_dr", "dtorque_dr", "alpha",
+                                                            "phi", "inflow_speed", "rho", "mu", "speed_of_sound")}
+_NOISE_SOURCES.update({name: f"analysis.{name}" for name in ("chord", "radius", "hub_radius")})
 
 
 def _check_trim_bounds(name, value):
@@ -78,6 +84,15 @@ class MultipointRotorGroup(om.Group):
         Quantity solved per condition so that the thrust is ``thrust_target``; None (default): none.
     trim_bounds : tuple of float or None
         (lower, upper) of the trimmed quantity in rad or rpm; None: :data:`TRIM_DEFAULTS`.
+    noise_observers : array_like or None
+        None (default): no noise.  An ``(n, 3)`` array of observer positions (m, rotor frame, x along
+        the thrust) adds the subsystem ``noise``
+        (:class:`~bild_mdo.acoustics.rotor_noise_group.RotorNoiseGroup`, ``num_nodes=K``) after the
+        analyses: the noise of the blade at every analysis condition, outputs ``oaspl[K, n]``,
+        ``oaspl_dba[K, n]`` ..., input ``observer_position[K, n, 3]`` (default: these positions).
+    noise_harmonics, noise_boundary_layer
+        Harmonics of the tonal noise (default 10) and BPM boundary layer (``'tripped'`` or
+        ``'untripped'``), with ``noise_observers``.
 
     Inputs
     ------
@@ -126,6 +141,7 @@ class MultipointRotorGroup(om.Group):
                              desc="per-condition quantity solved for thrust = thrust_target, or None")
         self.options.declare("trim_bounds", default=None, allow_none=True, check_valid=_check_trim_bounds,
                              desc="(lower, upper) of the trimmed quantity (rad or rpm); None for the defaults")
+        declare_noise_options(self.options)
 
     def setup(self):
         opts = self.options
@@ -152,6 +168,10 @@ class MultipointRotorGroup(om.Group):
                                                      on_invalid=opts["on_invalid"], trim=trim,
                                                      trim_bounds=opts["trim_bounds"], **loss),
                            promotes_outputs=metrics + ([trim] if trim else []))
+        noise = make_noise_group(opts, nn, nr, opts["num_blades"], polar)
+        if noise is not None:
+            # Inputs are promoted or connected in configure, once the sources have declared theirs.
+            self.add_subsystem("noise", noise, promotes_outputs=list(NOISE_OUTPUTS))
         condition = ["v_axial", "altitude", "rpm", "collective_pitch"]
         if trim is not None:
             condition.remove(trim)
@@ -172,3 +192,13 @@ class MultipointRotorGroup(om.Group):
             self.set_input_defaults("collective_pitch", val=np.zeros(nn), units="rad")
         if trim is not None:
             self.set_input_defaults("thrust_target", val=np.ones(nn), units="N")
+
+    def configure(self):
+        if self.options["noise_observers"] is None:
+            return
+        noise = self._get_subsystem("noise")
+        names = {meta["prom_name"] for meta in noise.get_io_metadata(iotypes="input").values()}
+        promoted = [name for name in ("observer_position", "v_axial", "rpm") if name in names]
+        self.promotes("noise", inputs=promoted)
+        for name in sorted(names & set(_NOISE_SOURCES)):
+            self.connect(_NOISE_SOURCES[name], f"noise.{name}")

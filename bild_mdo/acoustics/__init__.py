@@ -1,0 +1,1 @@
+"""Rotor noise: tonal (loading and thickness) and broadband (BPM self-noise) at far-field observers."""

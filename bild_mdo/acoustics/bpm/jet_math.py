@@ -1,0 +1,121 @@
+"""Elementary functions that accept plain arrays or :class:`~bild_mdo.utils.jet.Jet` values alike.
+
+BPM's fits are written once with these helpers: called with arrays (real or complex) they return arrays,
+called with jets they return jets whose partials are the exact first derivatives.  Everything is
+complex-safe: no ``abs``/``maximum`` of differentiated values; piecewise fits switch on the real part
+(:func:`where`) and every branch keeps its own derivative.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from bild_mdo.utils.jet import Jet
+
+_LN10 = np.log(10.0)
+
+
+def value(x):
+    """The value of ``x`` (a jet's value, or ``x`` itself)."""
+    return x.v if isinstance(x, Jet) else x
+
+
+def real_value(x):
+    """The real part of the value of ``x``: what the piecewise fits switch on."""
+    return np.real(value(x))
+
+
+def _chain(x, fx, dfx):
+    """``f(x)`` with the partials of ``x`` times ``f'(x)`` (``x`` a jet) or just ``f(x)``."""
+    if isinstance(x, Jet):
+        return Jet(fx, {k: d * dfx for k, d in x.d.items()})
+    return fx
+
+
+def log10(x):
+    """``log10(x)`` for ``x > 0``."""
+    v = value(x)
+    return _chain(x, np.log10(v), 1.0 / (v * _LN10) if isinstance(x, Jet) else None)
+
+
+def cos(x):
+    """``cos(x)``."""
+    v = value(x)
+    return _chain(x, np.cos(v), -np.sin(v) if isinstance(x, Jet) else None)
+
+
+def sin(x):
+    """``sin(x)``."""
+    v = value(x)
+    return _chain(x, np.sin(v), np.cos(v) if isinstance(x, Jet) else None)
+
+
+def pow10(x):
+    """``10**x``."""
+    fx = 10.0 ** value(x)
+    return _chain(x, fx, fx * _LN10)
+
+
+def sqrt(x):
+    """``sqrt(x)`` for ``x > 0``."""
+    fx = np.sqrt(value(x))
+    return _chain(x, fx, 0.5 / fx if isinstance(x, Jet) else None)
+
+
+def power(x, exponent):
+    """``x**exponent`` for a constant (real) exponent and ``x > 0``."""
+    v = value(x)
+    return _chain(x, v ** exponent, exponent * v ** (exponent - 1.0) if isinstance(x, Jet) else None)
+
+
+def square(x):
+    """``x**2``."""
+    return x * x
+
+
+def sign_abs(x):
+    """``|x|`` as ``sign(Re x) * x``: complex-safe, derivative ``sign(Re x)`` (the kink at 0 is BPM's own)."""
+    return x * np.where(real_value(x) < 0.0, -1.0, 1.0)
+
+
+def where(condition, a, b):
+    """``a`` where ``condition`` (a real boolean array), else ``b``; values and partials selected alike."""
+    va, vb = value(a), value(b)
+    result = np.where(condition, va, vb)
+    if not isinstance(a, Jet) and not isinstance(b, Jet):
+        return result
+    da = a.d if isinstance(a, Jet) else {}
+    db = b.d if isinstance(b, Jet) else {}
+    return Jet(result, {k: np.where(condition, da.get(k, 0.0), db.get(k, 0.0)) for k in set(da) | set(db)})
+
+
+def piecewise(x, edges, branches):
+    """Evaluate a piecewise fit of ``x``: ``branches[i]`` on ``edges[i-1] < Re x <= edges[i]``.
+
+    Each branch is evaluated on ``x`` replaced, outside its own interval, by a point inside it (the
+    midpoint of a bounded interval, else its finite edge), so branches with a restricted domain (square
+    roots) never see a value outside it; the result is assembled with :func:`where`.
+
+    Parameters
+    ----------
+    x : array or Jet
+        The switching variable.
+    edges : sequence of float or real arrays
+        ``len(branches) - 1`` increasing breakpoints (broadcastable against ``x``); a point on an edge
+        belongs to the lower branch.
+    branches : sequence of callable
+        ``branch(x) -> array or Jet``.
+    """
+    xr = real_value(x)
+    edges = [np.real(e) for e in edges]
+    lower = [-np.inf] + edges
+    upper = edges + [np.inf]
+    result = None
+    for i, (lo, hi, branch) in enumerate(zip(lower, upper, branches)):
+        inside = (xr > lo) & (xr <= hi)
+        if len(branches) == 1:
+            out = branch(x)
+        else:
+            fill = hi if i == 0 else (lo if i == len(branches) - 1 else 0.5 * (lo + hi))
+            out = branch(where(inside, x, fill))
+        result = out if result is None else where(inside, out, result)
+    return result
