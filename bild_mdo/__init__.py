@@ -19,6 +19,7 @@ from bild_mdo.airfoil import (AnalyticPolar, CompressiblePolar, MachTabulatedPol
 from bild_mdo.atmosphere import AtmosphereComp, isa
 from bild_mdo.bem import BEMAnalysisGroup, BEMResult, BEMStateWarning, TipMachWarning, analyze_rotor
 from bild_mdo.bild import BILDGroup
+from bild_mdo.bild.turbine_group import TurbineBILDGroup
 from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
 from bild_mdo.mil import MILGroup, design_mil
 from bild_mdo.multipoint import MultipointRotorGroup
@@ -26,12 +27,13 @@ from bild_mdo.optimization import optimize_rotor
 from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_design_sweep
 from bild_mdo.results.noise import NoiseResult, combine_noise, rotor_noise
+from bild_mdo.results.turbine_design import TurbineDesign, design_turbine
 
 __all__ = [
     "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
     "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "RotorGeometry", "RotorNoiseGroup",
-    "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "__version__", "analyze_rotor", "combine_noise",
-    "design_mil", "design_rotor", "get_polar", "isa", "naca4412", "off_design_sweep", "optimize_rotor",
+    "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "TurbineBILDGroup", "TurbineDesign", "__version__",
+    "analyze_rotor", "combine_noise", "design_mil", "design_rotor", "design_turbine", "get_polar", "isa", "naca4412", "off_design_sweep", "optimize_rotor",
     "read_geometry", "resolve_polar", "rotor_noise", "spanwise_polar", "write_geometry",
 ]

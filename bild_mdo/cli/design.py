@@ -10,6 +10,7 @@ from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.variants import SECTION_POINTS
+from bild_mdo.cli.design_turbine import add_turbine_arguments, run_turbine
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.blade_3d import DEFAULT_STACKING, LIBRARIES, require, section_coordinates, write_step, write_stl
 from bild_mdo.io.geometry import LENGTH_UNITS
@@ -95,6 +96,7 @@ def add_design_arguments(parser):
                        "(default: one blade along +z)")
     blade.add_argument("--cad-units", choices=tuple(LENGTH_UNITS), default="mm",
                        help="length unit of the STL and STEP files (STL carries none; slicers read mm)")
+    add_turbine_arguments(parser)
     return parser
 
 
@@ -165,6 +167,8 @@ def run_design(args, out):
     int
         Exit code, 0.
     """
+    if args.turbine:
+        return run_turbine(args, out, parser_defaults={"radius": 1.5, "hub_radius_ratio": 0.2, "ref_radius_ratio": 0.5})
     speed = ({"advance_ratio": _scalar_or_list(args.advance_ratio)} if args.advance_ratio is not None
              else {"v_axial": _scalar_or_list(args.v_axial)})
     names = [option[2:].replace("-", "_") for option, *_ in _BATCH_OPTIONS]  # argparse's dest of each option

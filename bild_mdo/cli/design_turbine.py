@@ -1,0 +1,85 @@
+"""``bild-mdo design --turbine``: design an ideal wind-turbine blade with the turbine BILD and print it.
+
+The turbine shares the design subcommand's sizing options (``--radius``, ``--hub-radius-ratio``,
+``--ref-radius-ratio``, ``--ref-chord``, ``--thrust``, ``--altitude``, ``--fluid``, ``--num-blades``,
+``--airfoil``, ``--num-radial``, ``--loss-model``) and adds its own: ``--turbine``, ``--wind-speed`` and
+``--tip-speed-ratio`` (or ``--turbine-rpm``).  Without ``--thrust`` or ``--ref-chord`` the design extracts the
+most power at the tip-speed ratio.
+"""
+from __future__ import annotations
+
+import sys
+
+from bild_mdo.cli.files import airfoil_polar
+from bild_mdo.fluid import fluid_from_text
+from bild_mdo.results.turbine_design import design_turbine
+
+#: Defaults of the shared options where the design subcommand's defaults (a propeller's) would not fit.
+TURBINE_DEFAULTS = {"radius": 40.0, "hub_radius_ratio": 0.05, "ref_radius_ratio": 0.7}
+
+
+def add_turbine_arguments(parser):
+    """Add the turbine options to the ``design`` parser (its sizing options are shared)."""
+    group = parser.add_argument_group("wind turbine (--turbine)")
+    group.add_argument("--turbine", action="store_true",
+                       help="design a wind turbine for maximum power (or the member of --thrust / --ref-chord)")
+    group.add_argument("--wind-speed", type=float, nargs="+", default=[10.0], metavar="V",
+                       help="wind speed V [m/s] (with --turbine; default 10)")
+    speed = group.add_mutually_exclusive_group()
+    speed.add_argument("--tip-speed-ratio", type=float, nargs="+", default=None, metavar="LAMBDA",
+                       help="tip-speed ratio Omega R / V [-] (with --turbine; default 7)")
+    speed.add_argument("--turbine-rpm", type=float, nargs="+", default=None, metavar="RPM",
+                       help="rotor speed [rpm] instead of --tip-speed-ratio (with --turbine)")
+
+
+def _value(values):
+    if values is None:
+        return None
+    values = list(values) if isinstance(values, (list, tuple)) else [values]
+    return values[0] if len(values) == 1 else values
+
+
+def _shared(args, name, parser_default):
+    """A shared option's value; the turbine default where the user left the design (propeller) default."""
+    value = getattr(args, name, None)
+    if name in TURBINE_DEFAULTS and (value is None or _value(value) == parser_default.get(name)):
+        return TURBINE_DEFAULTS[name]
+    return _value(value)
+
+
+def run_turbine(args, out=None, parser_defaults=None):
+    """Design the turbine(s) of parsed ``design --turbine`` options and print their summaries.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed options (the design subcommand's and :func:`add_turbine_arguments`'s).
+    out : file, optional
+        Where to print (default ``sys.stdout``).
+    parser_defaults : dict, optional
+        The design parser's defaults of the shared sizing options (``{'radius': 1.5, ...}``): an option
+        left at it takes the turbine's default (:data:`TURBINE_DEFAULTS`).  Default: those of ``bild-mdo design``.
+
+    Returns
+    -------
+    int
+        Exit code, 0.
+    """
+    out = sys.stdout if out is None else out
+    defaults = {"radius": 1.5, "hub_radius_ratio": 0.2, "ref_radius_ratio": 0.5} if parser_defaults is None \
+        else parser_defaults
+    fluid = getattr(args, "fluid", None)
+    result = design_turbine(
+        wind_speed=_value(args.wind_speed), tip_speed_ratio=_value(args.tip_speed_ratio),
+        rpm=_value(args.turbine_rpm), radius=_shared(args, "radius", defaults),
+        hub_radius_ratio=_shared(args, "hub_radius_ratio", defaults),
+        ref_radius_ratio=_shared(args, "ref_radius_ratio", defaults),
+        num_blades=getattr(args, "num_blades", 3), airfoil=airfoil_polar("--airfoil", getattr(args, "airfoil",
+                                                                                              "naca4412")),
+        loss_model=getattr(args, "loss_model", "tip_hub"), num_radial=getattr(args, "num_radial", 30),
+        thrust=_value(getattr(args, "thrust", None)), ref_chord=_value(getattr(args, "ref_chord", None)),
+        altitude=_value(getattr(args, "altitude", 0.0)) or 0.0,
+        fluid=None if fluid is None else fluid_from_text(fluid))
+    designs = [result[i] for i in range(len(result))] if result.is_batch else [result]
+    print("\n\n".join(design.summary() for design in designs), file=out)
+    return 0
