@@ -17,8 +17,10 @@ TipMachWarning
     Warned by ``analyze_rotor`` and ``design_rotor`` where a tip Mach number is >= 1.
 """
 from bild_mdo.bem.analyze import BEMResult, analyze_rotor, station_radii
+from bild_mdo.bem.analyze_inclined import InclinedBEMResult, TurbineBEMResult
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.flow_states import FLOW_STATE_NAMES, BEMStateWarning
+from bild_mdo.bem.inclined_bem_group import InclinedBEMGroup
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.inflow_residual import (InducedVelocities, InflowResidual, force_coefficients,
                                           induced_velocities, inflow_residual)
@@ -28,11 +30,15 @@ from bild_mdo.bem.performance import RotorPerformanceComp, rotor_performance
 from bild_mdo.bem.prandtl import LOSS_MODELS, PrandtlLoss, prandtl_loss
 from bild_mdo.bem.root_finding import find_brackets, solve_bracketed
 from bild_mdo.bem.stations import StationsComp
+from bild_mdo.bem.turbine_performance import TurbinePerformanceComp
+from bild_mdo.bem.turbine_polar import TurbinePolar
+from bild_mdo.bem.wind_components import WindComponentsComp
 
 __all__ = [
     "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "FLOW_STATE_NAMES", "InducedVelocities", "InflowComp", "InflowResidual",
     "LOSS_MODELS", "PrandtlLoss", "RotorPerformanceComp", "BladeElementLoadsComp", "StationsComp", "TipMachWarning",
     "analyze_rotor", "find_brackets", "force_coefficients",
     "induced_velocities", "inflow_residual", "prandtl_loss", "rotor_performance", "solve_bracketed",
-    "station_radii",
+    "station_radii", "InclinedBEMGroup", "InclinedBEMResult", "TurbineBEMResult", "TurbinePerformanceComp",
+    "TurbinePolar", "WindComponentsComp",
 ]

@@ -10,6 +10,7 @@ import openmdao.api as om
 from bild_mdo import validation
 from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import MAX_ALTITUDE, isa
+from bild_mdo.bem.analyze_inclined import check_inflow, inclined_arguments, run_inclined
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.blade_element import evaluate_section
 from bild_mdo.bem.flow_states import ON_INVALID, SOLVE_RANGES
@@ -119,8 +120,10 @@ def _voronoi_widths(radii, hub_radius, radius):
 
 def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, polar,
                   altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None,
-                  on_invalid="warn", solve_range="physical", collective_pitch=0.0, speed_of_sound=None, fluid=None):
-    """Analyse one rotor or a batch of rotors in axial flow with BEM theory.
+                  on_invalid="warn", solve_range="physical", collective_pitch=0.0, speed_of_sound=None, fluid=None,
+                  rotor_type="propeller", precone=0.0, tilt=0.0, yaw=0.0, hub_height=None, shear_exponent=0.0,
+                  num_sectors=1):
+    """Analyse one rotor or a batch of rotors with BEM theory: in axial flow, inclined flow, or as a wind turbine.
 
     Parameters
     ----------
@@ -176,10 +179,28 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         then, for ``V_x > 0``, reversed tangential flow), accepting only roots with ``W > 0``.
         'full': the first sign change of the residual in ``[-pi/2, pi)``, as before the flow
         states existed (mirror roots kept and flagged).
+    rotor_type : {'propeller', 'turbine'}
+        'propeller' (default): thrust-producing rotors, as always.  'turbine': a wind turbine,
+        ``v_axial`` the wind speed at hub height (> 0), ``polar`` the airfoil's own polar,
+        ``twist + collective_pitch`` CCBlade's ``theta`` (``alpha = phi - theta``); the result is a
+        :class:`~bild_mdo.bem.analyze_inclined.TurbineBEMResult` (power extracted, C_P, C_T,
+        tip-speed ratio; :class:`~bild_mdo.bem.inclined_bem_group.InclinedBEMGroup`).
+    precone, tilt, yaw : float or array_like
+        Precone, shaft tilt and yaw (rad), scalar or ``(nn,)``, in ``(-pi/2, pi/2)``; CCBlade's
+        conventions (:mod:`bild_mdo.bem.wind_components`).  Radii are then distances along the blade.
+    hub_height : float or array_like, optional
+        Hub height above the ground (m), > radius; needed with ``shear_exponent``.
+    shear_exponent : float or array_like
+        Power-law wind shear ``V = v_axial (1 + z / hub_height)**shear_exponent``, 0 ... 1 (default 0).
+    num_sectors : int
+        Azimuth sectors averaged (default 1; CCBlade uses at least 4 with tilt, yaw or shear).
+        Any of these options (or a turbine) gives an
+        :class:`~bild_mdo.bem.analyze_inclined.InclinedBEMResult` (per-sector stations, shape
+        ``(nn, ns, nr)``); all at their defaults, the axial analysis and its :class:`BEMResult`.
 
     Returns
     -------
-    BEMResult
+    BEMResult, InclinedBEMResult or TurbineBEMResult
 
     Raises
     ------
@@ -205,6 +226,8 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     if speed_of_sound is not None and rho is None:
         raise ValueError("speed_of_sound overrides the ISA together with rho and mu; give rho and mu too, "
                          "or leave it out (then the ISA at altitude is used)")
+    geometry, num_sectors, inclined = inclined_arguments(rotor_type, precone, tilt, yaw, hub_height, shear_exponent,
+                                                         num_sectors)
 
     chord = validation.positive("chord", chord, units="m", ndim=(1, 2), axes=_axes(chord))
     twist = validation.real_array("twist", twist, units="rad", ndim=(1, 2))
@@ -226,7 +249,9 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     if rho is not None:
         scalars.update(rho=validation.positive("rho", rho, units="kg/m**3"),
                        mu=validation.positive("mu", mu, units="Pa*s"))
-    sizes = {name: arr.size for name, arr in scalars.items() if arr.ndim == 1}
+    if rotor_type == "turbine":
+        scalars["v_axial"] = validation.positive("v_axial", v_axial, units="m/s", hint="the wind speed at hub height")
+    sizes = {name: arr.size for name, arr in (*scalars.items(), *geometry.items()) if arr is not None and arr.ndim == 1}
     if chord.ndim == 2:
         sizes["chord"] = chord.shape[0]
     extra = {}
@@ -278,7 +303,16 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     use_atmosphere = "rho" not in s
     if not use_atmosphere and "speed_of_sound" not in s:
         s["speed_of_sound"] = np.asarray(isa(s["altitude"]).speed_of_sound, dtype=float)
-    validation.memory_bound("designs", nn, nr, hint="analyse in smaller batches or with fewer stations")
+    validation.memory_bound("designs", nn * num_sectors, nr, hint="analyse in smaller batches or with fewer stations")
+    if inclined:
+        geometry = {name: per_node(10.0 * s["radius"] if value is None else value) for name, value in geometry.items()}
+        radii_all = (per_station(extra["radii"]) if "radii" in extra
+                     else station_radii(s["radius"], s["hub_radius"], nr).reshape(nn, nr))
+        check_inflow(s, radii_all, geometry, num_sectors)
+        values = dict({k: v for k, v in s.items() if k != "altitude" or use_atmosphere}, chord=chord, twist=twist)
+        group_kw.update(num_blades=int(num_blades), polar=polar, loss_model=loss_model, use_atmosphere=use_atmosphere,
+                        on_invalid=on_invalid, solve_range=solve_range)
+        return run_inclined(values, group_kw, nn, nr, single, rotor_type, num_sectors, geometry)
     prob = om.Problem(BEMAnalysisGroup(num_nodes=nn, num_radial=nr, num_blades=int(num_blades),
                                        polar=polar, loss_model=loss_model,
                                        use_atmosphere=use_atmosphere, on_invalid=on_invalid,

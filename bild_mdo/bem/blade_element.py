@@ -5,7 +5,10 @@ partials) and :class:`~bild_mdo.bem.loads.BladeElementLoadsComp` (loads and
 their partials), so both components use one set of formulas.
 
 Kinematics: ``V_theta = Omega r`` with ``Omega = rpm pi/30`` (:mod:`bild_mdo.constants`), local solidity
-``sigma = B c / (2 pi r)``, angle of attack ``alpha = twist - phi``.
+``sigma = B c / (2 pi r)``, angle of attack ``alpha = twist - phi``.  In inclined flow (precone, tilt,
+yaw, shear, azimuth sectors: :mod:`bild_mdo.bem.wind_components`) the components take the freestream
+velocity of every station instead, ``v_axial_local[nn, nr]`` and ``v_theta_local[nn, nr]`` (option
+``station_velocities``): the same formulas with ``V_x`` and ``V_theta`` per station.
 
 Reynolds number: ``Re = rho W0 c / mu`` with ``W0 = sqrt(V_x^2 + V_theta^2)``,
 the local speed *without* induction (as CCBlade does).  This keeps ``Re``
@@ -46,6 +49,7 @@ from bild_mdo.airfoil.polar import Polar
 from bild_mdo.bem.inflow_residual import (force_coefficients, induced_velocities, inflow_residual,
                                           inflow_residual_value, sign_of_sine)
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
+from bild_mdo.bem.station_velocities import STATION_VELOCITIES, station_mode
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.complex_step import real_part as _real
 from bild_mdo.utils.options import VARIABLES, add_inputs, declare_size_options
@@ -87,10 +91,19 @@ def _at(value, idx):
     return None if value is None else value[idx]
 
 
+def blade_speed(rpm, radii, v_theta=None):
+    """The station's tangential freestream speed: ``Omega r`` (axial flow), or the given ``v_theta`` (m/s).
+
+    ``v_theta`` is given by the per-station kinematics of inclined flow
+    (:mod:`bild_mdo.bem.wind_components`); then ``rpm`` is not used.
+    """
+    return rpm * RPM_TO_RAD_PER_S * radii if v_theta is None else v_theta
+
+
 def _station_setup(v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound,
-                   collective_pitch):
+                   collective_pitch, v_theta=None):
     """What a station's residual needs besides phi: ``V_theta``, solidity, Re, pitch and the polar's M and r/R."""
-    v_theta = rpm * RPM_TO_RAD_PER_S * radii
+    v_theta = blade_speed(rpm, radii, v_theta)
     sigma = num_blades * chord / (2.0 * np.pi * radii)
     reynolds = reynolds_number(v_axial, v_theta, chord, rho, mu)
     mach, fraction = polar_arguments(polar, np.sqrt(v_axial**2 + v_theta**2), speed_of_sound, radii, radius)
@@ -99,15 +112,17 @@ def _station_setup(v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blade
 
 def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
                       num_blades, polar, loss_model, speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND,
-                      collective_pitch=0.0):
+                      collective_pitch=0.0, v_theta=None):
     """A real ``residual(phi, idx) -> (R, dR/dphi)`` over flat station indices for the solver.
 
-    All inputs are real arrays already broadcast to the flat station shape.
+    All inputs are real arrays already broadcast to the flat station shape; ``v_theta`` (optional)
+    replaces ``Omega r`` by a given tangential freestream speed (:func:`blade_speed`).
     ``dR/dphi`` is the total derivative along phi (through alpha and F; ``M`` and ``r/R`` do not
     depend on phi).
     """
     v_theta, sigma, reynolds, pitch, mach, fraction = _station_setup(
-        v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound, collective_pitch)
+        v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound, collective_pitch,
+        v_theta)
 
     def residual(phi, idx):
         pv = polar.evaluate(pitch[idx] - phi, reynolds[idx], mach=_at(mach, idx), radial_fraction=_at(fraction, idx))
@@ -135,13 +150,14 @@ def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_ra
 
 def denominator_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
                          num_blades, polar, loss_model, speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND,
-                         collective_pitch=0.0):
+                         collective_pitch=0.0, v_theta=None):
     """A real ``admissible(phi, idx) -> bool`` over flat station indices: ``D > 0`` of Eq. (8), i.e. ``W > 0``.
 
     Arguments as in :func:`residual_function`.
     """
     v_theta, sigma, reynolds, pitch, mach, fraction = _station_setup(
-        v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound, collective_pitch)
+        v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blades, polar, speed_of_sound, collective_pitch,
+        v_theta)
 
     def admissible(phi, idx):
         pv = polar.evaluate(pitch[idx] - phi, reynolds[idx], mach=_at(mach, idx), radial_fraction=_at(fraction, idx))
@@ -152,7 +168,7 @@ def denominator_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub
     return admissible
 
 
-def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope=2.0 * np.pi):
+def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope=2.0 * np.pi, v_theta=None):
     """Small-angle estimate of the region-1 inflow angle (rad), a first iterate for the solve.
 
     With ``cl = a (twist - phi)``, no drag, ``F = 1`` and ``sin phi ~ phi``,
@@ -162,7 +178,7 @@ def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope
     to ``V_x / V_theta`` for a lightly loaded blade and to the momentum-theory
     hover angle at ``V_x = 0``.  Only a starting point: the solve keeps its bracket.
     """
-    v_theta = rpm * RPM_TO_RAD_PER_S * radii
+    v_theta = blade_speed(rpm, radii, v_theta)
     lam = v_axial / v_theta
     sa = num_blades * chord / (2.0 * np.pi * radii) * lift_slope
     a2 = lam * sa + 4.0
@@ -173,7 +189,7 @@ def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope
 
 def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
                      num_blades, polar, loss_model, loads=True, partials=True, unloaded=None,
-                     speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND, collective_pitch=0.0):
+                     speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND, collective_pitch=0.0, v_theta=None):
     """Residual, aerodynamics and (optionally) loads at every station, with partials.
 
     Parameters
@@ -195,6 +211,10 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         ``u_theta = 0``, ``W = W0``, ``dT/dr = dQ/dr = 0`` (with their exact partials).
     speed_of_sound, collective_pitch : ndarray or float
         Per-node speed of sound (m/s) and collective pitch (rad), broadcastable like ``rpm``.
+    v_theta : ndarray, optional
+        Tangential freestream speed of each station (m/s), shape (nn, nr), instead of ``Omega r``
+        (inclined flow, :mod:`bild_mdo.bem.wind_components`; ``v_axial`` is then per station too).
+        Its partials are keyed ``'v_theta'`` (and none are keyed ``'rpm'``).
 
     Returns
     -------
@@ -208,8 +228,12 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
     """
     shape = np.broadcast_shapes(np.shape(phi), np.shape(v_axial), np.shape(radii))
     ones = np.ones(shape)
-    omega = rpm * RPM_TO_RAD_PER_S
-    v_theta = omega * radii
+    if v_theta is None:
+        omega = rpm * RPM_TO_RAD_PER_S
+        v_theta = omega * radii
+        d_vtheta = {"rpm": RPM_TO_RAD_PER_S * _real(radii) * ones, "radii": _real(omega) * ones}
+    else:
+        d_vtheta = {"v_theta": ones}
     sigma = num_blades * chord / (2.0 * np.pi * radii)
     alpha = (twist + collective_pitch) - phi
     w0 = np.sqrt(v_axial**2 + v_theta**2)
@@ -244,13 +268,11 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         values["mach"] = values["inflow_speed"] / speed_of_sound * ones
     if not partials:
         return values, {}
-    d = _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0,
+    d = _section_partials(phi, v_axial, v_theta, d_vtheta, radii, chord, sigma, w0,
                           reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones,
                           mach, speed_of_sound, fraction, radius)
     if loads and unloaded is not None and np.any(unloaded):
-        d_w0 = _lin((_real(v_axial / w0), {"v_axial": ones}),
-                    (_real(v_theta / w0), {"rpm": RPM_TO_RAD_PER_S * _real(radii) * ones,
-                                           "radii": _real(omega) * ones}))
+        d_w0 = _lin((_real(v_axial / w0), {"v_axial": ones}), (_real(v_theta / w0), d_vtheta))
         for name, fixed in (("u_axial", {"v_axial": ones}), ("u_theta", {}), ("inflow_speed", d_w0),
                             ("dthrust_dr", {}), ("dtorque_dr", {})):
             d[name] = {key: np.where(unloaded, fixed.get(key, 0.0), d[name].get(key, 0.0))
@@ -261,19 +283,17 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
     return values, d
 
 
-def _section_partials(phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu,
+def _section_partials(phi, v_axial, v_theta, d_vtheta, radii, chord, sigma, w0, reynolds, rho, mu,
                       pv, loss, num_blades, loss_model, loads, ones, mach, speed_of_sound, fraction, radius):
     """Forward-mode partials of every section quantity with respect to the component inputs."""
-    phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound, radius = map(
-        _real, (phi, v_axial, v_theta, omega, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound,
-                radius))
+    phi, v_axial, v_theta, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound, radius = map(
+        _real, (phi, v_axial, v_theta, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound, radius))
     cl, cd = _real(pv.cl), _real(pv.cd)
     F = _real(loss.F)
     res = inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F)
 
     d_phi = {"phi": ones}
     d_vx = {"v_axial": ones}
-    d_vtheta = {"rpm": RPM_TO_RAD_PER_S * radii * ones, "radii": omega * ones}
     d_sigma = {"chord": sigma / chord * ones, "radii": -sigma / radii * ones}
     d_alpha = {"twist": ones, "collective_pitch": ones, "phi": -ones}
     d_w0 = _lin((v_axial / w0, d_vx), (v_theta / w0, d_vtheta))
@@ -366,14 +386,29 @@ def add_section_inputs(comp, names=SECTION_INPUTS, **values):
     add_inputs(comp, names, **values)
 
 
-def section_input_names(loss_model, polar):
+def add_station_section_inputs(comp):
+    """Declare the section inputs of ``comp``: :data:`SECTION_INPUTS`, or, with ``station_velocities``,
+    those without ``v_axial`` and ``rpm`` plus ``v_axial_local`` and ``v_theta_local`` (nn, nr) (m/s)."""
+    if not station_mode(comp.options):
+        add_section_inputs(comp)
+        return
+    add_section_inputs(comp, tuple(name for name in SECTION_INPUTS if name not in ("v_axial", "rpm")))
+    shape = (comp.options["num_nodes"], comp.options["num_radial"])
+    comp.add_input("v_axial_local", val=np.full(shape, 10.0), units="m/s", desc=STATION_VELOCITIES["v_axial_local"][1])
+    comp.add_input("v_theta_local", val=np.full(shape, 50.0), units="m/s", desc=STATION_VELOCITIES["v_theta_local"][1])
+
+
+def section_input_names(loss_model, polar, station_velocities=False):
     """Inputs the residual and the polar depend on.
 
     ``radius`` and ``hub_radius`` enter through the loss factor, ``radius`` also through ``r/R``
     of a polar that varies along the span; ``speed_of_sound`` only through the Mach number of a
-    polar that varies with it.
+    polar that varies with it.  With ``station_velocities`` ``v_axial_local`` and ``v_theta_local``
+    replace ``v_axial`` and ``rpm``.
     """
     names = ["v_axial", "rpm", "radii", "chord", "twist", "collective_pitch", "rho", "mu"]
+    if station_velocities:
+        names[:2] = list(STATION_VELOCITIES)
     names += list(loss_inputs(loss_model))
     if polar.varies_with_mach:
         names.append("speed_of_sound")
@@ -384,7 +419,11 @@ def section_input_names(loss_model, polar):
 
 def section_arguments(inputs, options):
     """Keyword arguments for :func:`evaluate_section` from component inputs (node inputs as (nn, 1))."""
-    kw = {name: inputs[name][:, None] for name in NODE_INPUTS}
+    if station_mode(options):
+        kw = {name: inputs[name][:, None] for name in NODE_INPUTS if name not in ("v_axial", "rpm")}
+        kw.update(v_axial=inputs["v_axial_local"], rpm=None, v_theta=inputs["v_theta_local"])
+    else:
+        kw = {name: inputs[name][:, None] for name in NODE_INPUTS}
     kw.update(radii=inputs["radii"], chord=inputs["chord"], twist=inputs["twist"],
               num_blades=options["num_blades"], polar=options["polar"],
               loss_model=options["loss_model"])

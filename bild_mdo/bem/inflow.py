@@ -5,13 +5,14 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.attached_branch import attached_branch, stalled_candidates
-from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_section_options,
                                         denominator_function, evaluate_section, inflow_angle_guess,
                                         residual_function, section_arguments, section_input_names)
 from bild_mdo.bem.flow_states import (MIRROR_ROOT, NO_SOLUTION, PROPELLER, classify,
                                       declare_flow_state_options, report_invalid)
 from bild_mdo.bem.inflow_residual import force_coefficients
 from bild_mdo.bem.root_finding import MAX_ITER, RESIDUAL_TOL, solve_bracketed, solve_physical
+from bild_mdo.bem.station_velocities import declare_station_velocity_option, kernel_key, station_mode
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.newton import complex_step_update
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -60,7 +61,10 @@ class InflowComp(om.ImplicitComponent):
 
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
     :func:`~bild_mdo.bem.blade_element.declare_section_options`; ``solve_range`` ('physical' or
-    'full'), ``on_invalid`` ('warn', 'raise' or 'ignore') and ``warm_start`` (bool, default False).
+    'full'), ``on_invalid`` ('warn', 'raise' or 'ignore'), ``warm_start`` (bool, default False) and
+    ``station_velocities`` (bool, default False: inputs ``v_axial_local[nn, nr]`` and
+    ``v_theta_local[nn, nr]`` (m/s) instead of ``v_axial`` and ``rpm``, for inclined flow,
+    :mod:`bild_mdo.bem.station_velocities`; then ``V_x >= 0`` and ``V_theta > 0`` per station).
 
     Inputs
     ------
@@ -83,10 +87,11 @@ class InflowComp(om.ImplicitComponent):
         declare_flow_state_options(self.options)
         self.options.declare("warm_start", types=bool, default=False,
                              desc="start each inflow solve from the previous solve's phi (same roots as cold)")
+        declare_station_velocity_option(self.options)
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
-        add_section_inputs(self)
+        add_station_section_inputs(self)
         self.add_output("phi", val=np.full((nn, nr), 0.2), units="rad", desc="inflow angle")
         self.add_output("flow_state", val=np.full((nn, nr), float(PROPELLER)),
                         desc="flow-state code (bild_mdo.bem.flow_states)")
@@ -102,32 +107,44 @@ class InflowComp(om.ImplicitComponent):
         self.declare_partials("phi", "phi", rows=rows_s, cols=cols_s)
         # The flow state is a label fixed by the solve: its residual is flow_state - label.
         self.declare_partials("flow_state", "flow_state", rows=rows_s, cols=cols_s, val=1.0)
-        for name in section_input_names(self.options["loss_model"], self.options["polar"]):
+        for name in self._input_names():
             if name in NODE_INPUTS:
                 self.declare_partials("phi", name, rows=rows_n, cols=cols_n)
             else:
                 self.declare_partials("phi", name, rows=rows_s, cols=cols_s)
 
+    def _input_names(self):
+        return section_input_names(self.options["loss_model"], self.options["polar"], station_mode(self.options))
+
+    def _velocities(self, inputs):
+        """``V_x`` and ``V_theta`` of every station, shape (nn, nr) or (nn, 1) (m/s)."""
+        if station_mode(self.options):
+            return inputs["v_axial_local"], inputs["v_theta_local"]
+        return inputs["v_axial"][:, None], inputs["rpm"][:, None] * RPM_TO_RAD_PER_S * inputs["radii"]
+
     def _describe(self, inputs):
         nr = self.options["num_radial"]
+        v_x, v_theta = self._velocities(inputs)
+        v_x, v_theta = (np.broadcast_to(np.real(v), (self.options["num_nodes"], nr)) for v in (v_x, v_theta))
 
         def describe(flat_index):
             node, station = divmod(int(flat_index), nr)
             return (f"design/node {node}, station {station} (r = {np.real(inputs['radii'][node, station]):.6g} m, "
-                    f"v_axial = {np.real(inputs['v_axial'][node]):.6g} m/s, rpm = {np.real(inputs['rpm'][node]):.6g}, "
+                    f"V_x = {v_x[node, station]:.6g} m/s, V_theta = {v_theta[node, station]:.6g} m/s, "
                     f"twist = {np.degrees(np.real(inputs['twist'][node, station])):.6g} deg, "
                     f"chord = {np.real(inputs['chord'][node, station]):.6g} m) of {self.pathname}")
         return describe
 
     def _fallback_angle(self, inputs):
-        """``atan2(V_x, Omega r)`` (complex-safe: ``Omega r > 0``) and its partials, shape (nn, nr)."""
-        v_x = inputs["v_axial"][:, None]
-        omega = inputs["rpm"][:, None] * RPM_TO_RAD_PER_S
-        v_theta = omega * inputs["radii"]
+        """``atan2(V_x, V_theta)`` (complex-safe: ``V_theta > 0``) and its partials by input name, shape (nn, nr)."""
+        v_x, v_theta = self._velocities(inputs)
         angle = np.arctan(v_x / v_theta)
-        v_x, omega, v_theta = np.real(v_x), np.real(omega), np.real(v_theta)
+        v_x, v_theta = np.real(v_x), np.real(v_theta)
         w2 = v_x**2 + v_theta**2
         d_vtheta = -v_x / w2
+        if station_mode(self.options):
+            return angle, {"v_axial_local": v_theta / w2, "v_theta_local": d_vtheta}
+        omega = np.real(inputs["rpm"][:, None]) * RPM_TO_RAD_PER_S
         return angle, {"v_axial": v_theta / w2, "rpm": d_vtheta * RPM_TO_RAD_PER_S * np.real(inputs["radii"]),
                        "radii": d_vtheta * omega}
 
@@ -142,7 +159,9 @@ class InflowComp(om.ImplicitComponent):
 
     def _check_domain(self, inputs):
         """The momentum model needs V_x >= 0, rpm > 0 and positive geometry (else AnalysisError)."""
-        for name, allow_zero in (("v_axial", True), ("rpm", False), ("chord", False), ("radii", False),
+        speeds = (("v_axial_local", True), ("v_theta_local", False)) if station_mode(self.options) else (
+            ("v_axial", True), ("rpm", False))
+        for name, allow_zero in (*speeds, ("chord", False), ("radii", False),
                                  ("rho", False), ("mu", False), ("speed_of_sound", False)):
             value = np.real(inputs[name])
             bad = (value < 0.0) if allow_zero else (value <= 0.0)
@@ -161,17 +180,25 @@ class InflowComp(om.ImplicitComponent):
         def flat(name):
             return np.broadcast_to(np.real(inputs[name]).reshape(nn, -1), shape).ravel()
 
-        kernels = {name: flat(name) for name in NODE_INPUTS + ("radii", "chord", "twist")}
+        stations = station_mode(self.options)
+        node_names = tuple(n for n in NODE_INPUTS if not (stations and n in ("v_axial", "rpm")))
+        kernels = {name: flat(name) for name in node_names + ("radii", "chord", "twist")}
         kernels.update(num_blades=self.options["num_blades"], polar=self.options["polar"],
                        loss_model=self.options["loss_model"])
-        residual = residual_function(**kernels)
-        guess = inflow_angle_guess(flat("v_axial"), flat("rpm"), flat("radii"), flat("chord"),
-                                   flat("twist") + flat("collective_pitch"), self.options["num_blades"])
+        v_theta = None
+        if stations:
+            kernels["v_axial"], v_theta = flat("v_axial_local"), flat("v_theta_local")
+            # The stall-branch test (attached_branch) reads an rpm: the one of this tangential speed.
+            kernels["rpm"] = v_theta / (RPM_TO_RAD_PER_S * kernels["radii"])
+        residual = residual_function(**kernels, v_theta=v_theta)
+        guess = inflow_angle_guess(kernels["v_axial"], kernels["rpm"], kernels["radii"], kernels["chord"],
+                                   kernels["twist"] + kernels["collective_pitch"], self.options["num_blades"],
+                                   v_theta=v_theta)
         previous = self._previous_phi if self.options["warm_start"] else None
         describe = self._describe(inputs)
         if self.options["solve_range"] == "physical":
-            admissible = denominator_function(**kernels)
-            phi, found = solve_physical(residual, admissible, flat("v_axial") > 0.0, describe=describe,
+            admissible = denominator_function(**kernels, v_theta=v_theta)
+            phi, found = solve_physical(residual, admissible, kernels["v_axial"] > 0.0, describe=describe,
                                         initial_guess=guess, previous=previous, warm_any_root=True)
         else:
             admissible = _every_root
@@ -182,7 +209,7 @@ class InflowComp(om.ImplicitComponent):
         if candidates.size:
             attached_branch(residual, admissible, phi, candidates, upper, describe, RESIDUAL_TOL, MAX_ITER)
         phi, found = phi.reshape(shape), found.reshape(shape)
-        real_inputs = {name: np.real(inputs[name]) for name in NODE_INPUTS + ("radii", "chord", "twist")}
+        real_inputs = {name: np.real(inputs[name]) for name in inputs}
         fallback = np.real(self._fallback_angle(real_inputs)[0])
         phi = np.where(found, phi, fallback)
         self._state, self._unloaded = self._classify(phi, found, real_inputs)
@@ -204,7 +231,7 @@ class InflowComp(om.ImplicitComponent):
         values, _ = evaluate_section(phi, partials=False, **section_arguments(inputs, self.options))
         c_x, c_theta = force_coefficients(phi, values["lift_coefficient"], values["drag_coefficient"])
         admissible = found & (values["denominator"] > 0.0)
-        v_axial = inputs["v_axial"][:, None]
+        v_axial = self._velocities(inputs)[0]
         if self.options["solve_range"] == "physical":
             state = classify(c_x, c_theta, v_axial, values["u_axial"], admissible)
         else:
@@ -218,8 +245,8 @@ class InflowComp(om.ImplicitComponent):
         d_res = d["residual"]
         unloaded = self._unloaded
         d_fallback = self._fallback_angle(inputs)[1] if np.any(unloaded) else {}
-        for name in ["phi"] + section_input_names(self.options["loss_model"], self.options["polar"]):
-            value = np.broadcast_to(d_res.get(name, 0.0), shape)
+        for name in ["phi"] + self._input_names():
+            value = np.broadcast_to(d_res.get(kernel_key(name), 0.0), shape)
             if np.any(unloaded):
                 value = np.where(unloaded, 1.0 if name == "phi" else -d_fallback.get(name, 0.0), value)
             jacobian["phi", name] = value.ravel()

@@ -4,9 +4,10 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bem.blade_element import (NODE_INPUTS, add_section_inputs, declare_section_options,
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_section_options,
                                         evaluate_section, section_arguments, section_input_names)
 from bild_mdo.bem.flow_states import NO_SOLUTION, PROPELLER
+from bild_mdo.bem.station_velocities import declare_station_velocity_option, kernel_key, station_mode
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
 #: Station outputs: name -> (units, description).
@@ -38,7 +39,9 @@ class BladeElementLoadsComp(om.ExplicitComponent):
     ``2 pi rho u_axial u_theta r^2 F`` (:class:`~bild_mdo.bild.momentum_loads.MomentumLoadsComp`).
 
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
-    :func:`~bild_mdo.bem.blade_element.declare_section_options`.
+    :func:`~bild_mdo.bem.blade_element.declare_section_options`; ``station_velocities`` (default
+    False; True: inputs ``v_axial_local[nn, nr]``, ``v_theta_local[nn, nr]`` (m/s) instead of
+    ``v_axial`` and ``rpm``, see :mod:`bild_mdo.bem.station_velocities`).
 
     Inputs
     ------
@@ -56,23 +59,26 @@ class BladeElementLoadsComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_section_options(self.options)
+        declare_station_velocity_option(self.options)
 
     def setup(self):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
         self.add_input("phi", val=np.full((nn, nr), 0.2), units="rad", desc="inflow angle")
         self.add_input("flow_state", val=np.full((nn, nr), float(PROPELLER)),
                        desc="flow-state code (bild_mdo.bem.flow_states); no derivatives")
-        add_section_inputs(self)
+        add_station_section_inputs(self)
         for name, (units, desc) in SECTION_OUTPUTS.items():
             self.add_output(name, val=np.ones((nn, nr)), units=units, desc=desc)
 
     def _dependencies(self, output):
         loss_model, polar = self.options["loss_model"], self.options["polar"]
-        names = ["phi"] + section_input_names(loss_model, polar)
+        stations = station_mode(self.options)
+        names = ["phi"] + section_input_names(loss_model, polar, stations)
         if output == "alpha":
             return ["phi", "twist", "collective_pitch"]
         if output == "reynolds":
-            return ["v_axial", "rpm", "radii", "chord", "rho", "mu"]
+            speeds = ["v_axial_local", "v_theta_local"] if stations else ["v_axial", "rpm", "radii"]
+            return speeds + ["chord", "rho", "mu"]
         if output == "mach":
             # W / a: everything the inflow speed depends on, and the speed of sound.
             return names + ([] if "speed_of_sound" in names else ["speed_of_sound"])
@@ -111,5 +117,5 @@ class BladeElementLoadsComp(om.ExplicitComponent):
         shape = inputs["phi"].shape
         for out in SECTION_OUTPUTS:
             for name in self._dependencies(out):
-                val = d[out].get(name)
+                val = d[out].get(kernel_key(name))
                 partials[out, name] = 0.0 if val is None else np.broadcast_to(val, shape).ravel()

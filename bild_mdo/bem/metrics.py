@@ -59,6 +59,21 @@ METRICS = (
     Metric("tip_mach", None, "tip Mach number sqrt(V_x^2 + (Omega R)^2) / a", "M_tip [-]"),
 )
 
+#: Per-design outputs of a wind turbine (:class:`~bild_mdo.bem.turbine_performance.TurbinePerformanceComp`),
+#: signed for energy extraction; ``A = pi (R cos(precone))^2`` is the swept area (CCBlade's), V the wind at hub height.
+TURBINE_METRICS = (
+    Metric("thrust", "N", "rotor thrust along the shaft, downwind positive: T = -sum(dT/dr dr)", "T [kN]", 1e-3),
+    Metric("torque", "N*m", "aerodynamic torque driving the rotor Q = -sum(dQ/dr dr)", "Q [kN m]", 1e-3),
+    Metric("power", "W", "power extracted P = Omega Q (= -Omega times the propeller-signed torque)", "P [kW]", 1e-3),
+    Metric("power_coefficient", None, "C_P = P / (1/2 rho A V^3), A = pi (R cos(precone))^2", "C_P [-]"),
+    Metric("thrust_coefficient", None, "C_T = T / (1/2 rho A V^2)", "C_T [-]"),
+    Metric("torque_coefficient", None, "C_Q = Q / (1/2 rho A V^2 R cos(precone))", "C_Q [-]"),
+    Metric("tip_speed_ratio", None, "tip-speed ratio lambda = Omega R / V", "TSR [-]"),
+    Metric("tip_mach", None, "tip Mach number sqrt(V^2 + (Omega R)^2) / a", "M_tip [-]"),
+)
+#: Turbine outputs: name -> (units, description).
+TURBINE_OUTPUTS = {metric.name: (metric.units, metric.description) for metric in TURBINE_METRICS}
+
 #: name -> Metric.
 METRICS_BY_NAME = {metric.name: metric for metric in METRICS}
 #: Per-design outputs: name -> (units, description), the form OpenMDAO declarations use.
