@@ -13,7 +13,7 @@ from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.bem.performance import SEA_LEVEL_SPEED_OF_SOUND, RotorPerformanceComp
-from bild_mdo.bem.stations import StationsComp
+from bild_mdo.bem.stations import StationsComp, declare_station_options
 
 
 class BEMAnalysisGroup(om.Group):
@@ -85,10 +85,7 @@ class BEMAnalysisGroup(om.Group):
         declare_flow_state_options(self.options)
         self.options.declare("use_atmosphere", types=bool, default=True,
                              desc="compute rho and mu from the ISA at input altitude (else they are inputs)")
-        self.options.declare("radial_fractions", default=None, allow_none=True,
-                             desc="station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
-        self.options.declare("width_fractions", default=None, allow_none=True,
-                             desc="station widths dr/R (with radial_fractions)")
+        declare_station_options(self.options)
         self.options.declare("warm_start", types=bool, default=False,
                              desc="start each inflow solve from the previous run's phi (InflowComp)")
         declare_noise_options(self.options)

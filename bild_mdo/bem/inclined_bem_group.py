@@ -14,7 +14,7 @@ from bild_mdo.bem.performance import SEA_LEVEL_SPEED_OF_SOUND, RotorPerformanceC
 from bild_mdo.bem.sector_average import AVERAGED_LOADS, SectorAverageComp
 from bild_mdo.bem.sector_stations import SECTOR_COPIES, SectorStationsComp
 from bild_mdo.bem.sectors import declare_sector_option
-from bild_mdo.bem.stations import StationsComp
+from bild_mdo.bem.stations import StationsComp, declare_station_options
 from bild_mdo.bem.turbine_performance import TurbinePerformanceComp
 from bild_mdo.bem.turbine_polar import TurbinePolar
 from bild_mdo.bem.wind_components import INFLOW_GEOMETRY, WindComponentsComp
@@ -87,10 +87,7 @@ class InclinedBEMGroup(om.Group):
                              desc="'propeller' (thrust-producing) or 'turbine' (energy-extracting, turbine airfoils)")
         self.options.declare("use_atmosphere", types=bool, default=True,
                              desc="compute rho and mu from the ISA at input altitude (else they are inputs)")
-        self.options.declare("radial_fractions", default=None, allow_none=True,
-                             desc="station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
-        self.options.declare("width_fractions", default=None, allow_none=True,
-                             desc="station widths dr/R (with radial_fractions)")
+        declare_station_options(self.options)
 
     def setup(self):
         opts = self.options

@@ -56,6 +56,16 @@ def _validate_fractions(rf, wf, centred, where):
                          f"{total[node]:.6g} > 1, more than the blade span")
 
 
+def declare_station_options(options):
+    """Declare ``radial_fractions`` and ``width_fractions``, the user stations of :class:`StationsComp` and of
+    every group that builds one."""
+    options.declare("radial_fractions", default=None, allow_none=True,
+                    desc="station radii as fractions of the tip radius, shape (nr,) or (nn, nr); "
+                         "None for midpoints of equal annuli")
+    options.declare("width_fractions", default=None, allow_none=True,
+                    desc="station widths as fractions of the tip radius (with radial_fractions)")
+
+
 class StationsComp(om.ExplicitComponent):
     """Radii and widths of the radial stations; integrals are ``sum(f * dr)``.
 
@@ -104,11 +114,7 @@ class StationsComp(om.ExplicitComponent):
 
     def initialize(self):
         declare_size_options(self.options)
-        self.options.declare("radial_fractions", default=None, allow_none=True,
-                             desc="station radii as fractions of the tip radius, shape (nr,) or (nn, nr); "
-                                  "None for midpoints of equal annuli")
-        self.options.declare("width_fractions", default=None, allow_none=True,
-                             desc="station widths as fractions of the tip radius (with radial_fractions)")
+        declare_station_options(self.options)
         self.options.declare("centred_annuli", types=bool, default=False,
                              desc="require each user station to be the midpoint of an annulus on the blade "
                                   "(r/R +- dr/(2R) inside [0, 1], r - dr/2 >= hub radius)")

@@ -13,7 +13,7 @@ from bild_mdo.fluid import FLUIDS, fluid_arrays
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS
 from bild_mdo.bem.performance import RotorPerformanceComp
 from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.bem.stations import StationsComp
+from bild_mdo.bem.stations import StationsComp, declare_station_options
 from bild_mdo.bild.advance_ratio import AdvanceRatioComp
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
@@ -266,10 +266,7 @@ class BILDGroup(om.Group):
                              desc="operating-condition input: 'v_axial' (m/s) or 'advance_ratio' J")
         self.options.declare("on_infeasible", default="raise", values=ON_INFEASIBLE,
                              desc="'raise': one AnalysisError naming every infeasible node; 'flag': output feasible")
-        self.options.declare("radial_fractions", default=None, allow_none=True,
-                             desc="user station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
-        self.options.declare("width_fractions", default=None, allow_none=True,
-                             desc="user station widths dr/R (with radial_fractions)")
+        declare_station_options(self.options)
         self.options.declare("thrust_target", types=bool, default=False,
                              desc="True: input thrust_target (N) and the reference chord solved for it")
         self.options.declare("section_point", default="reference", check_valid=_check_section_point,

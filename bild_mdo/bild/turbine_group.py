@@ -5,7 +5,7 @@ import openmdao.api as om
 from bild_mdo.airfoil.polar import Polar
 from bild_mdo.atmosphere import AtmosphereComp
 from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.bem.stations import StationsComp
+from bild_mdo.bem.stations import StationsComp, declare_station_options
 from bild_mdo.bild.geometry import GeometryComp
 from bild_mdo.bild.rotational_speed import RotationalSpeedComp
 from bild_mdo.bild.variants.base import Wiring
@@ -95,10 +95,7 @@ class TurbineBILDGroup(om.Group):
                              desc="member of the family: input multiplier (0: maximum power), ref_chord or thrust")
         self.options.declare("use_atmosphere", types=bool, default=True,
                              desc="rho, mu and speed_of_sound from the ISA at input altitude (else inputs)")
-        self.options.declare("radial_fractions", default=None, allow_none=True,
-                             desc="user station radii r/R, shape (nr,) or (nn, nr); None for equal annuli")
-        self.options.declare("width_fractions", default=None, allow_none=True,
-                             desc="user station widths dr/R (with radial_fractions)")
+        declare_station_options(self.options)
 
     def setup(self):
         opts = self.options
