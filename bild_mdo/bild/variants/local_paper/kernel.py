@@ -69,30 +69,48 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
     k = slots.shape[2]
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
     st = np.zeros(_STATE_SIZE)
+    work = np.zeros(1)
     c = np.zeros(_PARAMS_SIZE)
     c[_X_FIRST], c[_TORQUE], c[_LOSS], c[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
+    # The last two loaded stations of this design on one sheet: their offsets from their first angles.
+    known, off1, off2, r1, r2, lab1 = 0, 0.0, 0.0, 0.0, 0.0, -1
     for j in range(flow.shape[1]):
         row = out[j]
+        if not (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
+                and flow[1, j] == flow[1, j - 1]):
+            known = 0
         ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, 0.0)
         if not ok:
+            known = 0
             row[0], row[1], row[2], row[3] = 0.0, math.nan, -1.0, 4.0
             continue
         c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
         row[0], row[1], row[2], row[3] = lo_j, math.nan, -1.0, 1.0
         # Hover: the quartic leaves the station unloaded at every cd/cl its path can reach.
         if c[_VX] == 0.0 and c[_LAM] <= 0.5 * lowest_ratio * c[_VT]:
+            known = 0
             continue
-        first = paper_angle_one(c[_VX], c[_VT], c[_LAM], start_ratio)
+        first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
         if not math.isfinite(first):
-            first = paper_angle_one(c[_VX], c[_VT], c[_LAM], lowest_ratio)
+            first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], lowest_ratio)
         first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
         best_phi, best_x0, best_s, best_label, best_x = first, math.nan, math.inf, -1, math.nan
         x_g, tau_g = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], first, start_ratio, torque,
                                   loss)
         count = candidates_one(slots, x_first, nx, x_g, tau_g, labels, x0s, scores)
+        # On the sheet of the loaded station inward, the solve begins where the offsets of the stations inward
+        # from their first angles predict (from the first angle again where that gives no root on the sheet).
+        predicted = first
+        if known:
+            offset_j = off1 if known == 1 else off1 + (off1 - off2) * (flow[3, j] - r1) / (r1 - r2)
+            predicted = min(max(first + offset_j, lo_j), hi_j)
         for m in range(count):
-            x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, first, x0s[m],
+            start = predicted if labels[m] == lab1 and known else first
+            x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, start, x0s[m],
                                               grid, solve_settings)
+            if start != first and not s < math.inf:
+                x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, first, x0s[m],
+                                                  grid, solve_settings)
             if s < best_s:
                 best_phi, best_x0, best_s, best_label, best_x = x, x0_c, s, labels[m], st[_X]
         # The solution's own path: a lower minimum there is the station's section point instead.
@@ -122,3 +140,10 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
                                            c[_VX], c[_VT], best_phi, row[1], torque)
             for q in range(6):
                 row[4 + q] = values[q]
+            if known and best_label == lab1:
+                known, off2, r2 = 2, off1, r1
+            else:
+                known = 1
+            off1, r1, lab1 = best_phi - first, flow[3, j], best_label
+        else:
+            known = 0

@@ -125,8 +125,9 @@ def _taylor_start(vx, vt, lam, s):
 
 
 @kernel
-def paper_angle_one(vx, vt, lam, s):
-    """The paper loading's inflow angle at ``cd/cl = s``: ``eta2`` of the quartic (27) on ``[1/2, 1]``, ``u_axial`` from Eq. (26), ``phi = atan2(u_axial, eta2 V_theta)``; NaN where the quartic has no
+def paper_angle_one(work, vx, vt, lam, s):
+    """The paper loading's inflow angle at ``cd/cl = s`` (``work``: a float array of one element, the caller's,
+    so that no call allocates): ``eta2`` of the quartic (27) on ``[1/2, 1]``, ``u_axial`` from Eq. (26), ``phi = atan2(u_axial, eta2 V_theta)``; NaN where the quartic has no
     root below 1 (an unloaded station)."""
     # The bracket ends in closed form (bild_mdo.bild.variants.paper.eta2._solve_tail); the first iterate from the Taylor model of
     # bild_mdo.bild.variants.paper.eta2._solve, else by false position.
@@ -141,7 +142,7 @@ def paper_angle_one(vx, vt, lam, s):
     start = 1.0 - _taylor_start(vx, vt, lam, s)
     if not 0.5 < start < 1.0:
         start = min(max(0.5 - 0.5 * f_lo / (f_hi - f_lo), 0.501), 1.0 - 1e-12)
-    eta, converged, _, _, _ = _quartic_root(np.zeros(1), (vx, vt, lam, s), 0.5, 1.0, 1.0, start, 100, FIRST_TOL)
+    eta, converged, _, _, _ = _quartic_root(work, (vx, vt, lam, s), 0.5, 1.0, 1.0, start, 100, FIRST_TOL)
     if not converged or eta >= 1.0:
         return math.nan
     b = 0.5 * (vx - vt * s)

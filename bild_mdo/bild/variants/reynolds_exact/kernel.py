@@ -3,7 +3,10 @@
 
 :func:`solve_all` runs, for every station in turn, the steps of that
 docstring: the sheets its path meets at the first angle, lowest ``cd/cl``
-first; a grid search where none gives a candidate; then the other sheets the
+first (on the sheet of the loaded station inward of it in the same design,
+the solve begins where the offsets of the two stations inward from their
+first angles, extrapolated in ``r``, predict; from the first angle again
+where that gives no loaded root); a grid search where none gives a candidate; then the other sheets the
 path meets at the solution and the sheets that end at a fold next to it, each
 unless a Newton model of its ``Phi`` shows it cannot beat the best; finally one
 Newton step on ``R2`` at the chosen angle.  Every bracketed solve is
@@ -80,18 +83,30 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     near_label = np.empty(k + end_x0.size, dtype=np.int64)
     near_x0, near_phi = np.empty(k + end_x0.size), np.empty(k + end_x0.size)
     st = np.zeros(_STATE_SIZE)
+    work = np.zeros(1)
     c = np.zeros(_PARAMS_SIZE)
     c[_X_FIRST], c[_TORQUE], c[_LOSS] = x_first, 1.0 if torque else 0.0, loss
+    # The last two loaded stations of this design on one sheet: their offsets from their first angles.
+    known, off1, off2, r1, r2, lab1 = 0, 0.0, 0.0, 0.0, 0.0, -1
     for j in range(guess.size):
         row = out[j]
+        if not (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
+                and flow[1, j] == flow[1, j - 1]):
+            known = 0
         ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, start_ratio)
         if not ok:
+            known = 0
             row[0], row[1], row[2], row[3], row[4] = 0.0, math.nan, -1.0, 4.0, math.inf
             continue
         c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
-        first = paper_angle_one(c[_VX], c[_VT], c[_LAM], start_ratio)
+        first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
         first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
-        warm = guess[j] if math.isfinite(guess[j]) else first
+        warm, warm_label = (guess[j], first_label[j]) if math.isfinite(guess[j]) else (first, -1)
+        if known and not math.isfinite(guess[j]):
+            # No warm start: the solve on the sheet of the station inward begins where the offset of the stations
+            # inward predicts (it changes where Newton's method begins, not which sheets are tried).
+            offset_j = off1 if known == 1 else off1 + (off1 - off2) * (flow[3, j] - r1) / (r1 - r2)
+            warm, warm_label = min(max(first + offset_j, lo_j), hi_j), lab1
         best_phi, best_x0, best_obj, best_label = first, math.nan, math.inf, -1
         best_x, best_rate = math.nan, math.nan
         overloaded, above = False, False
@@ -112,9 +127,13 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
             scores[m] = math.inf
             # A warm start changes only where the solve on the station's last sheet begins, not which sheets are
             # tried: the design stays the one a cold start finds.
-            start = warm if labels[m] == first_label[j] else first
+            start = warm if labels[m] == warm_label else first
             x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0,
                                                                    start, x0s[m], grid, solve_settings)
+            if start != first and not obj < 0.0:
+                # The predicted start led to no loaded root: the solve from the first angle, as without it.
+                x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j,
+                                                                       -1.0, first, x0s[m], grid, solve_settings)
             if obj < best_obj:
                 best_phi, best_x0, best_obj, best_label = x, x0_c, obj, labels[m]
                 best_x, best_rate = st[_X], st[_RATE]
@@ -206,5 +225,11 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
                                            c[_VX], c[_VT], best_phi, row[1], torque)
             for q in range(6):
                 row[5 + q] = values[q]
+            if known and best_label == lab1:
+                known, off2, r2 = 2, off1, r1
+            else:
+                known = 1
+            off1, r1, lab1 = best_phi - first, flow[3, j], best_label
         else:
+            known = 0
             row[0], row[1], row[2], row[3], row[4] = lo_j, math.nan, -1.0, 3.0 if overloaded else 1.0, best_obj
