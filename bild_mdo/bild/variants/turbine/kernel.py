@@ -72,7 +72,6 @@ import numpy as np
 from bild_mdo.bem.prandtl import prandtl_loss
 from bild_mdo.bild.annulus_stationarity import residual_partials, stationarity
 from bild_mdo.utils.jet import Jet, variable
-from bild_mdo.utils.newton import bracketed_newton
 
 #: Value of the bracketed function past the maximum of the annulus thrust (m/s): negative, finite, large.
 BARRIER = -1.0e6
@@ -164,22 +163,24 @@ def solve_loading(mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, num
     """
     hi = unloaded_angle(v_axial, v_theta)
     lo = half_induction_angle(v_axial, v_theta, drag_to_lift)
-    args = (v_axial, v_theta, drag_to_lift, r, radius, hub_radius, num_blades, loss_model)
     with np.errstate(invalid="ignore", divide="ignore"):
-        f_hi = _bracketed(hi, mu, args)[0]
-        domain = (v_axial > 0.0) & (v_theta > 0.0) & (drag_to_lift >= 0.0) & (r > 0.0) & np.isfinite(f_hi + lo)
-    status = np.where(~domain, FAILED, np.where(f_hi <= 0.0, UNLOADED, LOADED))
+        domain = (v_axial > 0.0) & (v_theta > 0.0) & (drag_to_lift >= 0.0) & (r > 0.0) & np.isfinite(lo + hi)
+    status = np.where(domain, LOADED, FAILED)
     phi = np.where(domain, hi, 0.0)
-    active = np.flatnonzero(status == LOADED)
+    active = np.flatnonzero(domain)
     if active.size:
-        def function(x, idx):
-            at = active[idx]
-            return _bracketed(x, mu[at], tuple(a[at] if np.ndim(a) else a for a in args))
+        from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
+        from bild_mdo.bild.variants.turbine.compiled import solve_stations
 
-        result = bracketed_newton(function, lo[active], hi[active], np.full(active.size, -1.0),
-                                  max_iter=_MAX_ITERATIONS, quadratic_stop=True)
-        phi[active] = result.x
-        status[active] = np.where(result.converged, LOADED, FAILED)
+        flat = [np.ascontiguousarray(np.broadcast_to(a, phi.shape)[active], dtype=float)
+                for a in (mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius)]
+        root, code = np.empty(active.size), np.empty(active.size, dtype=np.int64)
+        # First iterate: Glauert's optimum rotor with wake rotation, phi = (2/3) atan(V/x) (the member mu = 0
+        # without drag and tip loss).
+        solve_stations(*flat, lo[active], hi[active], (2.0 / 3.0) * hi[active], num_blades,
+                       LOSS_CODES[loss_model], _MAX_ITERATIONS, (LOADED, UNLOADED, FAILED), root, code)
+        phi[active] = root
+        status[active] = code
     return phi, status
 
 
