@@ -20,6 +20,7 @@ from bild_mdo.atmosphere import AtmosphereComp, isa
 from bild_mdo.bem import BEMAnalysisGroup, BEMResult, BEMStateWarning, TipMachWarning, analyze_rotor
 from bild_mdo.bild import BILDGroup
 from bild_mdo.bild.turbine_group import TurbineBILDGroup
+from bild_mdo.energy import AnnualEnergyComp
 from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
 from bild_mdo.mil import MILGroup, design_mil
 from bild_mdo.multipoint import MultipointRotorGroup
@@ -30,7 +31,7 @@ from bild_mdo.results.noise import NoiseResult, combine_noise, rotor_noise
 from bild_mdo.results.turbine_design import TurbineDesign, design_turbine
 
 __all__ = [
-    "AnalyticPolar", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
+    "AnalyticPolar", "AnnualEnergyComp", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
     "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "RotorGeometry", "RotorNoiseGroup",
     "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "TurbineBILDGroup", "TurbineDesign", "__version__",
