@@ -42,10 +42,12 @@ from bild_mdo.airfoil.surrogate import TabulatedPolar
 from bild_mdo.airfoil.text import (DEFAULT_AIRFOIL, REYNOLDS_INDEPENDENT_AIRFOIL, FixedReynoldsPolar,
                                    sweep_polar)
 
+from bild_mdo.airfoil.single_table import SingleTablePolar  # noqa: E402
+
 __all__ = [
     "AnalyticPolar", "CompressiblePolar", "DEFAULT_AIRFOIL", "FixedReynoldsPolar", "MachPolarSecondDerivatives", "MachPolarValues", "MachTabulatedPolar",
     "MaxLiftToDrag", "Polar", "PolarData", "PolarSecondDerivatives", "PolarValues", "SpanwisePolar",
-    "REYNOLDS_INDEPENDENT_AIRFOIL", "StationMaxLiftToDrag", "StationPolarSecondDerivatives", "StationPolarValues", "TabulatedPolar",
+    "REYNOLDS_INDEPENDENT_AIRFOIL", "SingleTablePolar", "StationMaxLiftToDrag", "StationPolarSecondDerivatives", "StationPolarValues", "TabulatedPolar",
     "available_polars", "cache_dir", "clear_cache", "get_polar", "load_builtin_polars", "max_lift_to_drag",
     "naca4412", "polar_from_dict", "polar_to_dict", "read_polar_files", "read_polar_table", "read_xfoil_polar",
     "resolve_polar", "spanwise_polar", "sweep_polar", "tabulated_polar",

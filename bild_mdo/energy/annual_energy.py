@@ -41,9 +41,10 @@ Inputs
 power_coefficient[nn] (-), radius[nn] (m), rho[nn] (kg/m**3)
     The rotor's design ``C_P`` (e.g. of :class:`~bild_mdo.bild.turbine_group.TurbineBILDGroup`), tip radius and
     air density.
-rated_power[nn] (W), weibull_scale[nn] (m/s), weibull_shape[nn] (-), cut_in_speed[nn] (m/s),
-cut_out_speed[nn] (m/s)
-    Rated power, Weibull scale ``c`` and shape ``k``, cut-in and cut-out wind speeds.
+rated_power[nn] (W), weibull_scale[nn] (m/s), weibull_shape[nn] (-)
+    Rated power, Weibull scale ``c`` and shape ``k``.
+cut_in_speed[nn] (m/s), cut_out_speed[nn] (m/s)
+    Cut-in and cut-out wind speeds.
 
 Outputs
 -------

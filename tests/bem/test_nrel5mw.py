@@ -26,9 +26,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.interpolate import Akima1DInterpolator, RectBivariateSpline
 
-from bild_mdo.airfoil.polar import Polar, PolarValues
+from bild_mdo.airfoil.single_table import SingleTablePolar
 from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.bem import analyze_rotor
 from bild_mdo.bem.flow_states import TURBULENT_WAKE, WINDMILL
@@ -41,37 +40,6 @@ CCBLADE = dict(precone=np.radians(2.5), tilt=np.radians(5.0), hub_height=90.0, s
 CP_TUTORIAL, CT_TUTORIAL = 0.46488096, 0.76926398
 
 
-class TablePolar(Polar):
-    """A single-Reynolds AeroDyn table, Akima-interpolated (CCBlade.jl) or smoothed as CCBlade (Python) does."""
-
-    def __init__(self, path, smoothing):
-        data = np.loadtxt(path)
-        _, keep = np.unique(data[:, 0], return_index=True)  # DU25's table repeats its -13 deg row
-        data = data[keep]
-        alpha = np.radians(data[:, 0])
-        self.name = path.stem
-        if smoothing:
-            order = min(3, alpha.size - 1)
-            self.cl = RectBivariateSpline(alpha, [1e1, 1e15], np.c_[data[:, 1], data[:, 1]], kx=order, ky=1, s=0.1)
-            self.cd = RectBivariateSpline(alpha, [1e1, 1e15], np.c_[data[:, 2], data[:, 2]], kx=order, ky=1, s=0.001)
-        elif alpha.size > 2:
-            self.cl, self.cd = Akima1DInterpolator(alpha, data[:, 1]), Akima1DInterpolator(alpha, data[:, 2])
-        self.smoothing = smoothing
-        self.constant = alpha.size <= 3 and not smoothing
-        if self.constant:  # the cylinders: cl = 0, constant cd
-            self.cl_value, self.cd_value = data[0, 1], data[0, 2]
-
-    def _evaluate_real(self, alpha, reynolds):
-        zero = np.zeros_like(alpha)
-        if self.constant:
-            return PolarValues(zero + self.cl_value, zero + self.cd_value, zero, zero, zero, zero)
-        if self.smoothing:
-            re = np.full_like(alpha, 1e6)
-            return PolarValues(self.cl.ev(alpha, re), self.cd.ev(alpha, re), self.cl.ev(alpha, re, dx=1), zero,
-                               self.cd.ev(alpha, re, dx=1), zero)
-        return PolarValues(self.cl(alpha), self.cd(alpha), self.cl(alpha, 1), zero, self.cd(alpha, 1), zero)
-
-
 def _blade():
     r, twist_deg, _, chord, airfoil = np.loadtxt(DATA / "blade.dat").T
     edges = np.concatenate([[HUB], r, [R]])
@@ -81,7 +49,7 @@ def _blade():
 @pytest.fixture(scope="module", params=["akima", "smoothing"])
 def rotor(request):
     r, twist, chord, airfoil, widths = _blade()
-    tables = [TablePolar(DATA / f"{name}.dat", request.param == "smoothing") for name in AIRFOILS]
+    tables = [SingleTablePolar(DATA / f"{name}.dat", request.param) for name in AIRFOILS]
     polar = SpanwisePolar([tables[i] for i in airfoil], r / R)
 
     def analyze(v_wind, rpm, pitch=0.0, **options):
@@ -131,3 +99,24 @@ def test_ccblade_power_curve_table(rotor):
     np.testing.assert_allclose(res.thrust, t_ref, atol=0.15e6)
     np.testing.assert_allclose(res.torque, q_ref, atol=0.15e6 if kind == "akima" else 0.17e6)
     np.testing.assert_allclose(res.power, res.torque * rpm * np.pi / 30.0, rtol=1e-12)
+
+
+def test_bild_blade_for_the_nrel_rotor_speed_and_thrust():
+    # The turbine BILD blade at the NREL rotor's speed and thrust (tip airfoil along the span, docs' Turbines
+    # page): it meets the thrust, and a turbine BEM analysis of it gives back its power (a design's own
+    # consistency: the loading is solved in the same BEM model, Prandtl's factor included).
+    from bild_mdo.results.turbine_design import design_turbine
+
+    r, twist, chord, airfoil, widths = _blade()
+    tables = [SingleTablePolar(DATA / f"{name}.dat") for name in AIRFOILS]
+    polar = SpanwisePolar([tables[i] for i in airfoil], r / R)
+    v, rpm = 10.0, 10.0 * 7.55 / R * 30.0 / np.pi
+    nrel = analyze_rotor(chord, twist, R, HUB, rpm, v, B, polar, radii=r, dr=widths, rho=RHO, mu=MU,
+                         rotor_type="turbine", on_invalid="ignore")
+    ideal = design_turbine(wind_speed=v, tip_speed_ratio=7.55, radius=R, hub_radius_ratio=HUB / R, num_blades=B,
+                           airfoil=tables[-1], thrust=float(nrel.thrust), num_radial=30)
+    assert ideal.thrust == pytest.approx(float(nrel.thrust), rel=1e-9)
+    check = analyze_rotor(ideal.chord, ideal.twist, R, HUB, ideal.rpm, v, B, tables[-1], rho=RHO, mu=MU,
+                          rotor_type="turbine", radii=ideal.radii, on_invalid="ignore")
+    assert float(check.power_coefficient) == pytest.approx(ideal.power_coefficient, rel=1e-6)
+    print(f"BILD C_P {ideal.power_coefficient:.4f} against the NREL blade's {float(nrel.power_coefficient):.4f}")
