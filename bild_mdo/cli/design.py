@@ -10,7 +10,7 @@ from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.variants import SECTION_POINTS
-from bild_mdo.cli.design_turbine import add_turbine_arguments, run_turbine
+from bild_mdo.cli.design_turbine import TURBINE_DEFAULTS, add_turbine_arguments, run_turbine
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.blade_3d import DEFAULT_STACKING, LIBRARIES, require, section_coordinates, write_step, write_stl
 from bild_mdo.io.geometry import LENGTH_UNITS
@@ -48,7 +48,12 @@ def add_design_arguments(parser):
     speed.add_argument("--advance-ratio", type=float, nargs="+", default=None, metavar="J",
                        help="advance ratio J = V/(nD) [-], instead of --v-axial")
     for option, default, metavar, text in _BATCH_OPTIONS:
-        parser.add_argument(option, type=float, nargs="+", default=default, metavar=metavar, help=text)
+        # The sizing options --turbine shares default to None here, so that a value the user gives is told apart
+        # from the propeller default (filled in by run_design; --turbine has its own, design_turbine.TURBINE_DEFAULTS).
+        shared = option[2:].replace("-", "_") in TURBINE_DEFAULTS
+        parser.add_argument(option, type=float, nargs="+", default=None if shared else default, metavar=metavar,
+                            help=text + (f" (default {default:g}; with --turbine "
+                                         f"{TURBINE_DEFAULTS[option[2:].replace('-', '_')]:g})" if shared else ""))
     parser.add_argument("--fluid", default=None, metavar="FLUID", help=FLUID_HELP)
     parser.add_argument("--num-blades", type=int, default=3, metavar="B", help="number of blades B [-]")
     parser.add_argument("--airfoil", default="naca4412", metavar="AIRFOIL",
@@ -168,11 +173,14 @@ def run_design(args, out):
         Exit code, 0.
     """
     if args.turbine:
-        return run_turbine(args, out, parser_defaults={"radius": 1.5, "hub_radius_ratio": 0.2, "ref_radius_ratio": 0.5})
+        return run_turbine(args, out)
     speed = ({"advance_ratio": _scalar_or_list(args.advance_ratio)} if args.advance_ratio is not None
              else {"v_axial": _scalar_or_list(args.v_axial)})
     names = [option[2:].replace("-", "_") for option, *_ in _BATCH_OPTIONS]  # argparse's dest of each option
-    sizing = {name: _scalar_or_list(getattr(args, name)) for name in names}
+    given = {name: getattr(args, name) for name in names}
+    given.update({name: default for (option, default, *_), name in zip(_BATCH_OPTIONS, names)
+                  if name in TURBINE_DEFAULTS and given[name] is None})
+    sizing = {name: _scalar_or_list(value) for name, value in given.items()}
     num_radial = validation.integer("--num-radial", args.num_radial, minimum=2)
     lengths = {name: _batch_length(value) for name, value in {**speed, **sizing}.items()
                if isinstance(value, list)}

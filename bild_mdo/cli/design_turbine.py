@@ -39,26 +39,24 @@ def _value(values):
     return values[0] if len(values) == 1 else values
 
 
-def _shared(args, name, parser_default):
-    """A shared option's value; the turbine default where the user left the design (propeller) default."""
+def _shared(args, name):
+    """A shared sizing option's value: the user's, else the turbine default (the design parser leaves it None)."""
     value = getattr(args, name, None)
-    if name in TURBINE_DEFAULTS and (value is None or _value(value) == parser_default.get(name)):
+    if value is None and name in TURBINE_DEFAULTS:
         return TURBINE_DEFAULTS[name]
     return _value(value)
 
 
-def run_turbine(args, out=None, parser_defaults=None):
+def run_turbine(args, out=None):
     """Design the turbine(s) of parsed ``design --turbine`` options and print their summaries.
 
     Parameters
     ----------
     args : argparse.Namespace
-        Parsed options (the design subcommand's and :func:`add_turbine_arguments`'s).
+        Parsed options (the design subcommand's and :func:`add_turbine_arguments`'s); a shared sizing option
+        that is None (not given) takes the turbine's default (:data:`TURBINE_DEFAULTS`).
     out : file, optional
         Where to print (default ``sys.stdout``).
-    parser_defaults : dict, optional
-        The design parser's defaults of the shared sizing options (``{'radius': 1.5, ...}``): an option
-        left at it takes the turbine's default (:data:`TURBINE_DEFAULTS`).  Default: those of ``bild-mdo design``.
 
     Returns
     -------
@@ -66,14 +64,12 @@ def run_turbine(args, out=None, parser_defaults=None):
         Exit code, 0.
     """
     out = sys.stdout if out is None else out
-    defaults = {"radius": 1.5, "hub_radius_ratio": 0.2, "ref_radius_ratio": 0.5} if parser_defaults is None \
-        else parser_defaults
     fluid = getattr(args, "fluid", None)
     result = design_turbine(
         wind_speed=_value(args.wind_speed), tip_speed_ratio=_value(args.tip_speed_ratio),
-        rpm=_value(args.turbine_rpm), radius=_shared(args, "radius", defaults),
-        hub_radius_ratio=_shared(args, "hub_radius_ratio", defaults),
-        ref_radius_ratio=_shared(args, "ref_radius_ratio", defaults),
+        rpm=_value(args.turbine_rpm), radius=_shared(args, "radius"),
+        hub_radius_ratio=_shared(args, "hub_radius_ratio"),
+        ref_radius_ratio=_shared(args, "ref_radius_ratio"),
         num_blades=getattr(args, "num_blades", 3), airfoil=airfoil_polar("--airfoil", getattr(args, "airfoil",
                                                                                               "naca4412")),
         loss_model=getattr(args, "loss_model", "tip_hub"), num_radial=getattr(args, "num_radial", 30),

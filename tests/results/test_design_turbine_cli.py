@@ -2,21 +2,13 @@
 import argparse
 import io
 
-from bild_mdo.cli.design_turbine import add_turbine_arguments, run_turbine
+from bild_mdo.cli.design import add_design_arguments
+from bild_mdo.cli.design_turbine import run_turbine
 
 
 def _parser():
-    parser = argparse.ArgumentParser()
-    for option, default in (("--radius", 1.5), ("--hub-radius-ratio", 0.2), ("--ref-radius-ratio", 0.5),
-                            ("--ref-chord", None), ("--thrust", None), ("--altitude", 0.0)):
-        parser.add_argument(option, type=float, nargs="+", default=default)
-    parser.add_argument("--num-blades", type=int, default=3)
-    parser.add_argument("--airfoil", default="naca4412")
-    parser.add_argument("--num-radial", type=int, default=30)
-    parser.add_argument("--loss-model", default="tip_hub")
-    parser.add_argument("--fluid", default=None)
-    add_turbine_arguments(parser)
-    return parser
+    """The design subcommand's own parser (its sizing options are shared with --turbine)."""
+    return add_design_arguments(argparse.ArgumentParser())
 
 
 def test_run_turbine_prints_the_summary():
@@ -27,3 +19,11 @@ def test_run_turbine_prints_the_summary():
     text = out.getvalue()
     assert text.count("Turbine BILD design (maximum power)") == 2
     assert "radius                                 40" in text  # the turbine's default radius
+
+
+def test_an_explicit_radius_is_kept_even_at_the_propeller_default():
+    # --radius 1.5 (the propeller default, given by the user) designs a 1.5-m turbine, not the 40-m default.
+    args = _parser().parse_args(["--turbine", "--radius", "1.5", "--airfoil", "analytic", "--num-radial", "8"])
+    out = io.StringIO()
+    assert run_turbine(args, out) == 0
+    assert "radius                                1.5 m" in out.getvalue()
