@@ -22,9 +22,7 @@ time of this thread (``time.thread_time``); ratios are to the propeller BILD of 
 asserted: on a shared machine, repeat the run.
 """
 import argparse
-import statistics
 import sys
-import time
 import warnings
 from pathlib import Path
 
@@ -33,6 +31,7 @@ import openmdao.api as om
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bild_speed import paper_sweep, set_design, single_designs  # noqa: E402
+from bild_variants import clocks, median_pair  # noqa: E402
 
 from bild_mdo.airfoil import naca4412  # noqa: E402
 from bild_mdo.bild import BILDGroup  # noqa: E402
@@ -41,13 +40,6 @@ from bild_mdo.bild.turbine_group import TurbineBILDGroup  # noqa: E402
 NUM_RADIAL = 30
 CASES = ("propeller BILD (paper)", "turbine BILD, maximum power", "turbine BILD at a reference chord")
 TARGET = 2.0
-
-
-def clocks(function):
-    """``(wall, cpu)`` seconds of one call."""
-    wall, cpu = time.perf_counter(), time.thread_time()
-    function()
-    return time.perf_counter() - wall, time.thread_time() - cpu
 
 
 def turbine_sweep(levels):
@@ -103,10 +95,6 @@ def problem(case, values, polar):
 
 def cases_of(propeller, turbine):
     return {CASES[0]: propeller, CASES[1]: _member(CASES[1], turbine), CASES[2]: _member(CASES[2], turbine)}
-
-
-def median_pair(samples):
-    return statistics.median(s[0] for s in samples), statistics.median(s[1] for s in samples)
 
 
 def moved(values, factor):

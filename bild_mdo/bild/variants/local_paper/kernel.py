@@ -25,6 +25,9 @@ from bild_mdo.bild.variants.local_point.kernels import (
     polish_one,
     station_setup,
     station_values_one,
+    trail_begin,
+    trail_prediction,
+    trail_record,
 )
 from bild_mdo.bild.variants.local_point.sheet_solve import (
     _HIGH,
@@ -72,23 +75,20 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
     work = np.zeros(1)
     c = np.zeros(_PARAMS_SIZE)
     c[_X_FIRST], c[_TORQUE], c[_LOSS], c[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
-    # The last two loaded stations of this design on one sheet: their offsets from their first angles.
-    known, off1, off2, r1, r2, lab1 = 0, 0.0, 0.0, 0.0, 0.0, -1
+    trail = np.zeros(6)
     for j in range(flow.shape[1]):
         row = out[j]
-        if not (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
-                and flow[1, j] == flow[1, j - 1]):
-            known = 0
+        trail_begin(trail, flow, j)
         ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, 0.0)
         if not ok:
-            known = 0
+            trail_record(trail, -1, 0.0, 0.0)
             row[0], row[1], row[2], row[3] = 0.0, math.nan, -1.0, 4.0
             continue
         c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
         row[0], row[1], row[2], row[3] = lo_j, math.nan, -1.0, 1.0
         # Hover: the quartic leaves the station unloaded at every cd/cl its path can reach.
         if c[_VX] == 0.0 and c[_LAM] <= 0.5 * lowest_ratio * c[_VT]:
-            known = 0
+            trail_record(trail, -1, 0.0, 0.0)
             continue
         first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
         if not math.isfinite(first):
@@ -100,12 +100,10 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
         count = candidates_one(slots, x_first, nx, x_g, tau_g, labels, x0s, scores)
         # On the sheet of the loaded station inward, the solve begins where the offsets of the stations inward
         # from their first angles predict (from the first angle again where that gives no root on the sheet).
-        predicted = first
-        if known:
-            offset_j = off1 if known == 1 else off1 + (off1 - off2) * (flow[3, j] - r1) / (r1 - r2)
-            predicted = min(max(first + offset_j, lo_j), hi_j)
+        trail_label, offset_j = trail_prediction(trail, flow[3, j])
+        predicted = min(max(first + offset_j, lo_j), hi_j)
         for m in range(count):
-            start = predicted if labels[m] == lab1 and known else first
+            start = predicted if labels[m] == trail_label else first
             x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, start, x0s[m],
                                               grid, solve_settings)
             if start != first and not s < math.inf:
@@ -140,10 +138,6 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
                                            c[_VX], c[_VT], best_phi, row[1], torque)
             for q in range(6):
                 row[4 + q] = values[q]
-            if known and best_label == lab1:
-                known, off2, r2 = 2, off1, r1
-            else:
-                known = 1
-            off1, r1, lab1 = best_phi - first, flow[3, j], best_label
+            trail_record(trail, best_label, best_phi - first, flow[3, j])
         else:
-            known = 0
+            trail_record(trail, -1, 0.0, 0.0)

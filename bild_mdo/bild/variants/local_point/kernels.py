@@ -356,3 +356,43 @@ def station_setup(flow, j, num_blades, loss, ratio):
     b = 0.5 * (vx - vt * ratio)
     c = 0.5 * vt * (0.5 * vt + vx * ratio)
     return True, log_k, half_b * (radius - r) / r, k_hub, lo, math.atan2(b + math.sqrt(b * b + c), 0.5 * vt)
+
+
+# The trail of a design's stations inward of the one being solved (both local-point solves): ``trail[6]`` holds
+# how many loaded stations on one sheet it knows (0, 1, 2), their offsets of the solution from the first angle
+# (outermost first), their radii and their sheet.
+_KNOWN, _OFF1, _OFF2, _R1, _R2, _LABEL = range(6)
+
+
+@kernel
+def trail_begin(trail, flow, j):
+    """Forget the trail unless station ``j`` of ``flow`` continues the design of station ``j - 1`` outward."""
+    if not (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
+            and flow[1, j] == flow[1, j - 1]):
+        trail[_KNOWN] = 0.0
+
+
+@kernel
+def trail_prediction(trail, r):
+    """``(label, offset)`` the trail predicts at radius ``r`` (linear in ``r`` from two stations, constant from
+    one); ``(-1, 0)`` where it knows none."""
+    if trail[_KNOWN] == 0.0:
+        return -1, 0.0
+    if trail[_KNOWN] == 1.0:
+        return int(trail[_LABEL]), trail[_OFF1]
+    slope = (trail[_OFF1] - trail[_OFF2]) / (trail[_R1] - trail[_R2])
+    return int(trail[_LABEL]), trail[_OFF1] + slope * (r - trail[_R1])
+
+
+@kernel
+def trail_record(trail, label, offset, r):
+    """Add a loaded station (``label`` its sheet, ``offset`` its solution less its first angle); ``label < 0``
+    (not loaded) forgets the trail."""
+    if label < 0:
+        trail[_KNOWN] = 0.0
+        return
+    if trail[_KNOWN] > 0.0 and label == trail[_LABEL]:
+        trail[_KNOWN], trail[_OFF2], trail[_R2] = 2.0, trail[_OFF1], trail[_R1]
+    else:
+        trail[_KNOWN] = 1.0
+    trail[_OFF1], trail[_R1], trail[_LABEL] = offset, r, float(label)

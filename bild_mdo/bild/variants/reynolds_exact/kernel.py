@@ -28,6 +28,9 @@ from bild_mdo.bild.variants.local_point.kernels import (
     polish_one,
     station_setup,
     station_values_one,
+    trail_begin,
+    trail_prediction,
+    trail_record,
 )
 from bild_mdo.bild.variants.local_point.sheet_solve import (
     _COVERED,
@@ -86,27 +89,24 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     work = np.zeros(1)
     c = np.zeros(_PARAMS_SIZE)
     c[_X_FIRST], c[_TORQUE], c[_LOSS] = x_first, 1.0 if torque else 0.0, loss
-    # The last two loaded stations of this design on one sheet: their offsets from their first angles.
-    known, off1, off2, r1, r2, lab1 = 0, 0.0, 0.0, 0.0, 0.0, -1
+    trail = np.zeros(6)
     for j in range(guess.size):
         row = out[j]
-        if not (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
-                and flow[1, j] == flow[1, j - 1]):
-            known = 0
+        trail_begin(trail, flow, j)
         ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, start_ratio)
         if not ok:
-            known = 0
+            trail_record(trail, -1, 0.0, 0.0)
             row[0], row[1], row[2], row[3], row[4] = 0.0, math.nan, -1.0, 4.0, math.inf
             continue
         c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
         first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
         first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
         warm, warm_label = (guess[j], first_label[j]) if math.isfinite(guess[j]) else (first, -1)
-        if known and not math.isfinite(guess[j]):
+        trail_label, offset_j = trail_prediction(trail, flow[3, j])
+        if trail_label >= 0 and not math.isfinite(guess[j]):
             # No warm start: the solve on the sheet of the station inward begins where the offset of the stations
             # inward predicts (it changes where Newton's method begins, not which sheets are tried).
-            offset_j = off1 if known == 1 else off1 + (off1 - off2) * (flow[3, j] - r1) / (r1 - r2)
-            warm, warm_label = min(max(first + offset_j, lo_j), hi_j), lab1
+            warm, warm_label = min(max(first + offset_j, lo_j), hi_j), trail_label
         best_phi, best_x0, best_obj, best_label = first, math.nan, math.inf, -1
         best_x, best_rate = math.nan, math.nan
         overloaded, above = False, False
@@ -225,11 +225,7 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
                                            c[_VX], c[_VT], best_phi, row[1], torque)
             for q in range(6):
                 row[5 + q] = values[q]
-            if known and best_label == lab1:
-                known, off2, r2 = 2, off1, r1
-            else:
-                known = 1
-            off1, r1, lab1 = best_phi - first, flow[3, j], best_label
+            trail_record(trail, best_label, best_phi - first, flow[3, j])
         else:
-            known = 0
+            trail_record(trail, -1, 0.0, 0.0)
             row[0], row[1], row[2], row[3], row[4] = lo_j, math.nan, -1.0, 3.0 if overloaded else 1.0, best_obj
