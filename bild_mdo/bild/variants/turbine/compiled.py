@@ -16,8 +16,8 @@ import math
 
 import numpy as np
 
-from bild_mdo.bild.annulus_stationarity import BARRIER
 from bild_mdo.bild.variants.local_point.kernels import prandtl_one
+from bild_mdo.bild.variants.turbine.kernel import BARRIER
 from bild_mdo.utils.compiled import bracketed_newton_for, kernel
 
 
@@ -44,7 +44,7 @@ def turbine_value(phi, state, params):
     d1 = f2 * t + 2.0 * f1 * t1 + f * t2
     thrust_slope, power_slope = -d, -n - v_axial * d
     if not thrust_slope < 0.0:
-        return BARRIER, 1.0, abs(mu)
+        return BARRIER, 1.0, abs(power_slope) + abs(mu)
     g = power_slope / thrust_slope
     return g - mu, ((-n1 - v_axial * d1) - g * (-d1)) / thrust_slope, abs(g) + abs(mu)
 

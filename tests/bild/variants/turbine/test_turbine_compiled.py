@@ -28,10 +28,17 @@ def _stations(loss_model, mu):
 
 @pytest.mark.parametrize("loss_model", ["tip_hub", "tip", "none"])
 def test_compiled_residual_is_the_whole_array_one(loss_model):
+    # At 40 angles from below a = 1/2 (the solve's bracket end) to the unloaded angle, so that the barrier past
+    # the maximum of the annulus thrust is met too.
     args = _stations(loss_model, 0.5)
-    mu, rest = args[0], args[1:]
-    phi = 0.6 * kernel.unloaded_angle(rest[0], rest[1])
+    lo = kernel.half_induction_angle(args[1], args[2], args[3])
+    hi = kernel.unloaded_angle(args[1], args[2])
+    fractions = np.linspace(-0.9, 1.0, 40)[:, None]
+    rest = tuple(np.broadcast_to(a, (40, a.size)).ravel() if np.ndim(a) else a for a in args[1:])
+    mu = np.broadcast_to(args[0], (40, args[0].size)).ravel()
+    phi = (lo + fractions * (hi - lo)).ravel()
     value, slope, scale = kernel._bracketed(phi, mu, rest)
+    assert np.any(value == kernel.BARRIER)
     codes = {"none": 0, "tip": 1, "tip_hub": 2}[loss_model]
     for i in range(phi.size):
         v, x, s, r, radius, hub = (a[i] for a in rest[:6])
