@@ -20,12 +20,13 @@ The region-2 integral is Gauss-Legendre quadrature on ``[V_in, b]`` (option
 against the closed form ``c**3 [gamma(1 + 3/k, z)]`` of the lower incomplete
 gamma function agrees to 1e-12); its nodes move with ``b``, so the partials are
 exact in every input.  Where ``V_in < V_r < V_out`` the two regions meet with
-equal power, so ``AEP`` depends on ``V_r`` only through the regions' weights and
-is smooth there; where ``V_r`` leaves ``[V_in, V_out]`` (a rotor that never
+equal power, so the derivative of ``AEP`` in ``V_r`` vanishes and ``AEP`` is
+smooth there; where ``V_r`` leaves ``[V_in, V_out]`` (a rotor that never
 reaches rated power, or one rated below cut-in) ``b`` is clipped: a kink.
 
-Assumptions (stated, not modelled): the design ``C_P`` holds at every wind
-speed of region 2 (the Reynolds number of the sections changes with the wind
+Assumptions (stated, not modelled): in region 3 the pitch holds exactly the
+rated power (the pitch angle itself is not computed); the design ``C_P`` holds
+at every wind speed of region 2 (the Reynolds number of the sections changes with the wind
 speed; the rotor-speed limit that usually ends region 2 early is not
 modelled); no drivetrain or availability losses; the year is 8760 hours.
 
