@@ -17,14 +17,14 @@ import math
 import numpy as np
 
 from bild_mdo.bild.variants.local_point.kernels import prandtl_one
-from bild_mdo.bild.variants.turbine.kernel import BARRIER
 from bild_mdo.utils.compiled import bracketed_newton_for, kernel
 
 
 @kernel
 def turbine_value(phi, state, params):
-    """``(G - mu, dG/dphi, scale)`` of one station at ``phi`` (``params = (V, x, s, k_tip, k_hub, loss, mu)``)."""
-    v_axial, v_theta, ratio, k_tip, k_hub, loss, mu = params
+    """``(G - mu, dG/dphi, scale)`` of one station at ``phi`` (``params = (V, x, s, k_tip, k_hub, loss, mu,
+    barrier)``, ``barrier`` the value past the maximum of the annulus thrust: the turbine kernel's ``BARRIER``)."""
+    v_axial, v_theta, ratio, k_tip, k_hub, loss, mu, barrier = params
     s = -ratio
     sn, cs = math.sin(phi), math.cos(phi)
     f, f1, f2 = prandtl_one(sn, cs, k_tip, k_hub, int(loss))
@@ -44,7 +44,7 @@ def turbine_value(phi, state, params):
     d1 = f2 * t + 2.0 * f1 * t1 + f * t2
     thrust_slope, power_slope = -d, -n - v_axial * d
     if not thrust_slope < 0.0:
-        return BARRIER, 1.0, abs(power_slope) + abs(mu)
+        return barrier, 1.0, abs(power_slope) + abs(mu)
     g = power_slope / thrust_slope
     return g - mu, ((-n1 - v_axial * d1) - g * (-d1)) / thrust_slope, abs(g) + abs(mu)
 
@@ -54,7 +54,7 @@ _solve = bracketed_newton_for(turbine_value)
 
 @kernel
 def solve_stations(mu, v_axial, v_theta, ratio, r, radius, hub_radius, lo, hi, start, num_blades, loss, max_iter,
-                   codes, phi, status):
+                   codes, barrier, phi, status):
     """Solve every station (flat arrays of one length; ``loss``: 0 none, 1 tip, 2 tip and hub): writes ``phi``
     (``hi``, the unloaded angle, where not loaded) and ``status``, one of ``codes = (loaded, unloaded,
     failed)``: unloaded where ``G(hi) <= mu``, failed where that value is not finite or the solve did not
@@ -70,7 +70,7 @@ def solve_stations(mu, v_axial, v_theta, ratio, r, radius, hub_radius, lo, hi, s
             known = 0
         k_tip = half_b * (radius[i] - r[i]) / r[i]
         k_hub = half_b * (r[i] - hub_radius[i]) / hub_radius[i] if loss == 2 else 1.0
-        params = (v_axial[i], v_theta[i], ratio[i], k_tip, k_hub, float(loss), mu[i])
+        params = (v_axial[i], v_theta[i], ratio[i], k_tip, k_hub, float(loss), mu[i], barrier)
         phi[i] = hi[i]
         f_hi = turbine_value(hi[i], state, params)[0]
         if not math.isfinite(f_hi):

@@ -178,7 +178,7 @@ def solve_loading(mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, num
         # First iterate: Glauert's optimum rotor with wake rotation, phi = (2/3) atan(V/x) (the member mu = 0
         # without drag and tip loss).
         solve_stations(*flat, lo[active], hi[active], (2.0 / 3.0) * hi[active], num_blades,
-                       LOSS_CODES[loss_model], _MAX_ITERATIONS, (LOADED, UNLOADED, FAILED), root, code)
+                       LOSS_CODES[loss_model], _MAX_ITERATIONS, (LOADED, UNLOADED, FAILED), BARRIER, root, code)
         phi[active] = root
         status[active] = code
     return phi, status

@@ -43,7 +43,8 @@ def test_compiled_residual_is_the_whole_array_one(loss_model):
     for i in range(phi.size):
         v, x, s, r, radius, hub = (a[i] for a in rest[:6])
         k_hub = 0.5 * B * (r - hub) / hub if codes == 2 else 1.0
-        one = turbine_value(phi[i], np.zeros(1), (v, x, s, 0.5 * B * (radius - r) / r, k_hub, float(codes), mu[i]))
+        params = (v, x, s, 0.5 * B * (radius - r) / r, k_hub, float(codes), mu[i], kernel.BARRIER)
+        one = turbine_value(phi[i], np.zeros(1), params)
         np.testing.assert_allclose(one, (value[i], slope[i], scale[i]), rtol=1e-12, atol=1e-12 * scale[i])
 
 
