@@ -50,10 +50,10 @@ def add_design_arguments(parser):
     for option, default, metavar, text in _BATCH_OPTIONS:
         # The sizing options --turbine shares default to None here, so that a value the user gives is told apart
         # from the propeller default (filled in by run_design; --turbine has its own, design_turbine.TURBINE_DEFAULTS).
-        shared = option[2:].replace("-", "_") in TURBINE_DEFAULTS
-        parser.add_argument(option, type=float, nargs="+", default=None if shared else default, metavar=metavar,
-                            help=text + (f" (default {default:g}; with --turbine "
-                                         f"{TURBINE_DEFAULTS[option[2:].replace('-', '_')]:g})" if shared else ""))
+        turbine = TURBINE_DEFAULTS.get(option[2:].replace("-", "_"))
+        parser.add_argument(option, type=float, nargs="+", default=default if turbine is None else None,
+                            metavar=metavar, help=text if turbine is None else
+                            f"{text} (default {default:g}; with --turbine {turbine:g})")
     parser.add_argument("--fluid", default=None, metavar="FLUID", help=FLUID_HELP)
     parser.add_argument("--num-blades", type=int, default=3, metavar="B", help="number of blades B [-]")
     parser.add_argument("--airfoil", default="naca4412", metavar="AIRFOIL",

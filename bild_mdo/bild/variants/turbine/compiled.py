@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 
-from bild_mdo.bild.variants.local_point.kernels import prandtl_one
+from bild_mdo.bild.variants.local_point.kernels import prandtl_one, trail_prediction, trail_record
 from bild_mdo.utils.compiled import bracketed_newton_for, kernel
 
 
@@ -62,30 +62,27 @@ def solve_stations(mu, v_axial, v_theta, ratio, r, radius, hub_radius, lo, hi, s
     loaded, unloaded, failed = codes
     state = np.zeros(1)
     half_b = 0.5 * num_blades
-    # The last two loaded stations of this design: their offsets from their first iterates.
-    known, off1, off2, r1, r2 = 0, 0.0, 0.0, 0.0, 0.0
+    # The loaded stations inward of this one in its design (one "sheet": label 0), as the local-point solves
+    # keep them.
+    trail = np.zeros(6)
     for i in range(mu.size):
         if not (i > 0 and r[i] > r[i - 1] and radius[i] == radius[i - 1] and mu[i] == mu[i - 1]
                 and v_axial[i] == v_axial[i - 1]):
-            known = 0
+            trail_record(trail, -1, 0.0, 0.0)
         k_tip = half_b * (radius[i] - r[i]) / r[i]
         k_hub = half_b * (r[i] - hub_radius[i]) / hub_radius[i] if loss == 2 else 1.0
         params = (v_axial[i], v_theta[i], ratio[i], k_tip, k_hub, float(loss), mu[i], barrier)
         phi[i] = hi[i]
         f_hi = turbine_value(hi[i], state, params)[0]
         if not math.isfinite(f_hi):
-            status[i], known = failed, 0
+            status[i] = failed
+            trail_record(trail, -1, 0.0, 0.0)
         elif f_hi <= 0.0:
-            status[i], known = unloaded, 0
+            status[i] = unloaded
+            trail_record(trail, -1, 0.0, 0.0)
         else:
-            guess = start[i]
-            if known:
-                # Where the offsets of the stations inward predict (changes where Newton's method begins only).
-                guess += off1 if known == 1 else off1 + (off1 - off2) * (r[i] - r1) / (r1 - r2)
-            x, ok, _, _, _ = _solve(state, params, lo[i], hi[i], -1.0, guess, max_iter, 0.0)
+            # Where the offsets of the stations inward predict (changes where Newton's method begins only).
+            offset = trail_prediction(trail, r[i])[1]
+            x, ok, _, _, _ = _solve(state, params, lo[i], hi[i], -1.0, start[i] + offset, max_iter, 0.0)
             phi[i], status[i] = x, loaded if ok else failed
-            if ok:
-                known, off2, r2 = min(known + 1, 2), off1, r1
-                off1, r1 = x - start[i], r[i]
-            else:
-                known = 0
+            trail_record(trail, 0 if ok else -1, x - start[i], r[i])
