@@ -20,7 +20,7 @@ from bild_mdo.atmosphere import AtmosphereComp, isa
 from bild_mdo.bem import BEMAnalysisGroup, BEMResult, BEMStateWarning, TipMachWarning, analyze_rotor
 from bild_mdo.bild import BILDGroup
 from bild_mdo.bild.turbine_group import TurbineBILDGroup
-from bild_mdo.energy import AnnualEnergyComp
+from bild_mdo.energy import AnnualEnergyComp, PowerCurveGroup
 from bild_mdo.io import RotorGeometry, read_geometry, write_geometry
 from bild_mdo.mil import MILGroup, design_mil
 from bild_mdo.multipoint import MultipointRotorGroup
@@ -33,7 +33,7 @@ from bild_mdo.results.turbine_design import TurbineDesign, design_turbine
 __all__ = [
     "AnalyticPolar", "AnnualEnergyComp", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
-    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "RotorGeometry", "RotorNoiseGroup",
+    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "PowerCurveGroup", "RotorGeometry", "RotorNoiseGroup",
     "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "TurbineBILDGroup", "TurbineDesign", "__version__",
     "analyze_rotor", "combine_noise", "design_mil", "design_rotor", "design_turbine", "get_polar", "isa", "naca4412", "off_design_sweep", "optimize_rotor",
     "read_geometry", "resolve_polar", "rotor_noise", "spanwise_polar", "write_geometry",

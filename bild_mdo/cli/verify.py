@@ -24,6 +24,13 @@ from bild_mdo.verification.runner import (DEFAULT_CHUNK_SIZE, default_db_path, r
                                           verification_table)
 from bild_mdo.verification.statistics import format_table3
 from bild_mdo.verification.store import ResultsStore
+from bild_mdo.verification.turbine_sweep import (TurbineSweepSpec, optimize_turbine_case, optimize_turbine_cases,
+                                                 turbine_bild_batch)
+
+#: What the table's rows mean in a turbine sweep (:mod:`bild_mdo.verification.turbine_sweep`).
+TURBINE_TABLE_NOTE = ("Turbine sweep: C_T = T/(rho A V^2/2), C_Q = Q/(rho A V^2 R/2), C_P = P/(rho A V^3/2), "
+                      "eta = P/(V T), energy E = V T - P (both methods minimise it at the thrust: the most power); "
+                      "FM is not defined.")
 from bild_mdo.verification.store_file import check_store_path
 
 #: What each optimiser beyond SciPy's SLSQP needs, and how to get it.
@@ -48,7 +55,7 @@ def add_verify_arguments(parser):
 
     Options: ``--levels``, ``--workers``, ``--scheduler``, ``--db``,
     ``--optimizer``, ``--airfoil``, ``--section-point``, ``--ideal-loading``,
-    ``--starts``, ``--figures``, ``--no-progress``, ``--chunk-size``.
+    ``--starts``, ``--turbine``, ``--figures``, ``--no-progress``, ``--chunk-size``.
 
     Parameters
     ----------
@@ -91,6 +98,11 @@ def add_verify_arguments(parser):
                              "the other section point (same ideal loading), a linear "
                              "chord/twist; the lowest-energy converged optimum is the reference and the spread "
                              "between the starts is reported; part of the sweep's fingerprint (default: 1)")
+    parser.add_argument("--turbine", action="store_true",
+                        help="the turbine verification: the turbine BILD against the full-BEM optimum of the most "
+                             "power at its thrust, over tip-speed ratio (4 ... 10), radius (2 ... 8 m), altitude "
+                             "(0 ... 3000 m) and thrust coefficient (0.4 ... 0.75) at 8 m/s; --starts 1 or 2 "
+                             "(BILD, a linear cold start); not with --section-point or --ideal-loading")
     parser.add_argument("--figures", metavar="DIR", default=None,
                         help="write Fig. 4 and Fig. 5 as PNG files into DIR (needs bild-mdo[plot])")
     parser.add_argument("--no-progress", action="store_true", help="no progress report on stderr")
@@ -142,6 +154,9 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
     out = sys.stdout if out is None else out
     airfoil = airfoil_text(getattr(args, "airfoil", DEFAULT_AIRFOIL))
     spec = _sweep_spec(args, airfoil)
+    turbine = isinstance(spec, TurbineSweepSpec)
+    if turbine and bild_batch_fn is bild_batch:
+        bild_batch_fn, optimize_fn = turbine_bild_batch, optimize_turbine_case
     if getattr(args, "chunk_size", 1) < 1:
         raise ValueError(f"--chunk-size must be >= 1, got {args.chunk_size}")
     if args.scheduler is None:
@@ -159,8 +174,8 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
         require_matplotlib()
         _check_figures_folder(args.figures)
     check_store_path(db_path)
-    if optimize_chunk_fn is None and optimize_fn is optimize_case:
-        optimize_chunk_fn = optimize_cases
+    if optimize_chunk_fn is None and optimize_fn in (optimize_case, optimize_turbine_case):
+        optimize_chunk_fn = optimize_cases if optimize_fn is optimize_case else optimize_turbine_cases
     run = run_sweep(spec, db_path, bild_batch_fn, optimize_fn, workers=args.workers, scheduler=args.scheduler,
                     progress=not args.no_progress, optimize_chunk_fn=optimize_chunk_fn,
                     chunk_size=getattr(args, "chunk_size", DEFAULT_CHUNK_SIZE))
@@ -169,8 +184,10 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
     # The excess line is printed for the settings beyond the paper's, so the paper's output stays as it was.
     beyond_paper = spec.section_point != "reference" or spec.starts > 1 or spec.ideal_loading != "paper"
     table, optimality_error = verification_table(rows, spec.section_point if beyond_paper else None,
-                                                 spec.ideal_loading)
+                                                 spec.ideal_loading, "turbine" if turbine else "propeller")
     print(sweep_summary(spec, db_path, run), file=out)
+    if turbine:
+        print(TURBINE_TABLE_NOTE, file=out)
     print(format_table3(table), file=out)
     if optimality_error is not None:
         print(f"Optimum is an optimum: not checked, the BEM trim of the BILD designs failed: {optimality_error}",
@@ -187,6 +204,12 @@ def _sweep_spec(args, airfoil):
     section_point = getattr(args, "section_point", "reference")
     ideal_loading = getattr(args, "ideal_loading", "paper")
     starts = getattr(args, "starts", 1)
+    if getattr(args, "turbine", False):
+        if section_point != "reference" or ideal_loading != "paper":
+            raise ValueError("--turbine designs with the turbine BILD: leave out --section-point and --ideal-loading")
+        if starts not in (1, 2):
+            raise ValueError(f"--starts must be 1 or 2 with --turbine (BILD, a linear cold start), got {starts}")
+        return TurbineSweepSpec(levels=args.levels, optimizer=args.optimizer, airfoil=airfoil, starts=starts)
     if section_point not in ("reference", "local"):
         raise ValueError(f"--section-point must be 'reference' or 'local', got {section_point!r}")
     if ideal_loading not in IDEAL_LOADINGS:

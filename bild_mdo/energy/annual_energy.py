@@ -25,7 +25,9 @@ smooth there; where ``V_r`` leaves ``[V_in, V_out]`` (a rotor that never
 reaches rated power, or one rated below cut-in) ``b`` is clipped: a kink.
 
 Assumptions (stated, not modelled): in region 3 the pitch holds exactly the
-rated power (the pitch angle itself is not computed); the design ``C_P`` holds
+rated power (the pitch angle itself is not computed here:
+:class:`~bild_mdo.energy.power_curve_group.PowerCurveGroup` solves it, with the
+BEM power of the blade at every wind speed); the design ``C_P`` holds
 at every wind speed of region 2 (the Reynolds number of the sections changes with the wind
 speed; the rotor-speed limit that usually ends region 2 early is not
 modelled); no drivetrain or availability losses; the year is 8760 hours.

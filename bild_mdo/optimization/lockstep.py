@@ -241,7 +241,7 @@ class CaseRun:
             return True
         n = self.spec.chord_ratio_cp.size
         slope = float(np.sum(start.grad_thrust[n:]))
-        if not slope > 0.0:
+        if not slope * self.settings.get("pitch_slope_sign", 1.0) > 0.0:
             return True
         estimate = start.energy_loss_ratio - float(np.sum(start.grad_energy[n:])) / slope * start.thrust_residual
         return final.energy_loss_ratio > estimate * (1.0 - _TRIM_ESTIMATE_MARGIN)
@@ -258,7 +258,7 @@ class CaseRun:
             if abs(found.thrust_residual) <= THRUST_TOLERANCE:
                 return x_chord, x_twist, found
             slope = float(np.sum(found.grad_thrust[x_chord.size:]))
-            if not slope > 0.0:
+            if not slope * self.settings.get("pitch_slope_sign", 1.0) > 0.0:  # thrust against the pitch: a stalled start
                 return None
             x_twist = np.clip(x_twist - found.thrust_residual / slope, lower, upper)
         return None

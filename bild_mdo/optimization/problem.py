@@ -26,6 +26,7 @@ import openmdao.api as om
 
 from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
+from bild_mdo.bem.turbine_polar import TurbinePolar
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
 from bild_mdo.optimization.initial_design import (CHORD_RATIO_BOUNDS, INITIAL_DESIGNS, TWIST_LIMITS,
                                                   bild_initial_design, ideal_energy_loss, linear_initial_design,
@@ -34,6 +35,9 @@ from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.optimization.parameterization import (PARAMETERIZATIONS, design_value_fractions, fit_design_values,
                                                     parameterization_matrix)
 from bild_mdo.optimization.scaling import CHORD_RATIO_REF, SCALINGS, TWIST_REF
+from bild_mdo.optimization.turbine import (ROTOR_TYPES, THRUST_SIGN, TURBINE_TWIST_LIMITS, ideal_turbine_energy_loss,
+                                           turbine_bild_initial_design, turbine_linear_initial_design,
+                                           turbine_twist_bounds)
 
 #: The NLP optimisers of the BEM optimisation (and of ``bild-mdo verify --optimizer``).
 OPTIMIZERS = ("slsqp", "ipopt", "snopt")
@@ -105,7 +109,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
                                bild_twist=None, reference_chord=None, parameterization="stations",
                                num_cp=10, order=4, num_radial=30, num_blades=3, polar="naca4412",
                                loss_model="tip_hub", scaling="hessian", tol=None, maxiter=None,
-                               print_level=0, energy_loss_ref=None, approx_totals=None):
+                               print_level=0, energy_loss_ref=None, approx_totals=None, rotor_type="propeller"):
     """Set up the BEM energy-loss minimisation of one rotor (paper Sec. 5.1) as an ``om.Problem``.
 
     Parameters
@@ -163,6 +167,9 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
         forward finite differences of the whole model
         (``model.approx_totals(method='fd')``), what a user without analytic
         partials would run; for speed comparisons (``benchmarks/optimization_speed.py``).
+    rotor_type : {'propeller', 'turbine'}
+        'turbine': a wind turbine, the most power for the thrust ``thrust_target`` (downwind, > 0) in the wind
+        ``v_axial``, with ``polar`` the airfoil's own polar (:mod:`bild_mdo.optimization.turbine`).
 
     Returns
     -------
@@ -185,19 +192,23 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
         raise ValueError(f"scaling must be one of {SCALINGS}, got {scaling!r}")
     if approx_totals not in (None, "fd"):
         raise ValueError(f"approx_totals must be None (analytic) or 'fd', got {approx_totals!r}")
+    if rotor_type not in ROTOR_TYPES:
+        raise ValueError(f"rotor_type must be one of {ROTOR_TYPES}, got {rotor_type!r}")
     tol = DEFAULT_TOL[optimizer] if tol is None else float(tol)
     maxiter = DEFAULT_MAXITER[optimizer] if maxiter is None else int(maxiter)
     driver = make_driver(optimizer, tol, maxiter, print_level)
 
     prob = om.Problem(reports=False)
     polar = resolve_polar(polar)
+    polar = TurbinePolar(polar) if rotor_type == "turbine" else polar
     group = BEMOptimizationGroup(num_nodes=1, num_radial=num_radial, num_blades=num_blades,
                                  polar=polar, loss_model=loss_model,
                                  parameterization=parameterization, num_cp=num_cp, order=order)
     prob.model.add_subsystem("rotor", group, promotes=["*"])
     prob.model.add_design_var("chord_ratio_cp", lower=CHORD_RATIO_BOUNDS[0], upper=CHORD_RATIO_BOUNDS[1],
                               ref=CHORD_RATIO_REF)
-    prob.model.add_design_var("twist_cp", lower=TWIST_LIMITS[0], upper=TWIST_LIMITS[1], ref=TWIST_REF)
+    limits = TURBINE_TWIST_LIMITS if rotor_type == "turbine" else TWIST_LIMITS
+    prob.model.add_design_var("twist_cp", lower=limits[0], upper=limits[1], ref=TWIST_REF)
     prob.model.add_objective("energy_loss_ratio")
     prob.model.add_constraint("thrust_residual", equals=0.0)
     prob.driver = driver
@@ -211,10 +222,10 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
         "num_radial": num_radial, "num_blades": num_blades, "order": order,
         "matrix": parameterization_matrix(parameterization, num_radial, num_cp, order),
         "fractions": design_value_fractions(parameterization, num_radial, num_cp, order),
-        "twist_bounds": TWIST_LIMITS,
+        "twist_bounds": limits,
         # What a batched twin of this problem needs (bild_mdo.optimization.lockstep) and the SLSQP engine reads.
         "num_cp": num_cp, "polar": polar, "loss_model": loss_model, "tol": tol, "maxiter": maxiter,
-        "approx_totals": approx_totals,
+        "approx_totals": approx_totals, "rotor_type": rotor_type,
     }
     if v_axial is not None:
         set_optimization_case(prob, v_axial, rpm, radius, hub_radius, thrust_target, altitude, initial=initial,
@@ -274,7 +285,7 @@ def set_optimization_case(prob, v_axial, rpm, radius, hub_radius, thrust_target,
     prob.set_val("radius", radius, units="m")
     prob.set_val("hub_radius", hub_radius, units="m")
     prob.set_val("altitude", altitude, units="m")
-    prob.set_val("thrust_target", thrust_target, units="N")
+    prob.set_val("thrust_target", THRUST_SIGN[meta.get("rotor_type", "propeller")] * thrust_target, units="N")
     prob.set_val("energy_loss_ref", energy_loss_ref, units="W")
     prob.set_val("chord_ratio_cp", chord_cp[None, :])
     prob.set_val("twist_cp", twist_cp[None, :], units="rad")
@@ -302,15 +313,23 @@ def case_design_values(meta, v_axial, rpm, radius, hub_radius, thrust_target, al
     """
     nr = meta["num_radial"]
     rho = float(isa(altitude).rho)
+    turbine = meta.get("rotor_type") == "turbine"
     if initial == "bild":
         if (bild_chord is None) != (bild_twist is None):
             raise ValueError("initial='bild' takes bild_chord and bild_twist together (the BILD geometry at the "
                              "stations), or neither (then the paper's BILD designs the case's blade)")
-        if bild_chord is None:
+        if bild_chord is None and turbine:
+            bild_chord, bild_twist = turbine_bild_initial_design(
+                v_axial, rpm, radius, hub_radius, thrust_target, altitude, nr, meta["num_blades"], meta["polar"].base,
+                meta["loss_model"])
+        elif bild_chord is None:
             bild_chord, bild_twist = bild_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, altitude,
                                                          nr, meta["num_blades"], meta["polar"], meta["loss_model"])
         chord0 = np.asarray(bild_chord, dtype=float).ravel()
         twist0 = np.asarray(bild_twist, dtype=float).ravel()
+    elif initial == "linear" and turbine:
+        chord0, twist0 = turbine_linear_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, rho, nr,
+                                                       meta["num_blades"], reference_chord=reference_chord)
     elif initial == "linear":
         chord0, twist0 = linear_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, rho, nr,
                                                reference_chord=reference_chord)
@@ -320,10 +339,12 @@ def case_design_values(meta, v_axial, rpm, radius, hub_radius, thrust_target, al
         raise ValueError(f"initial chord and twist must have {nr} stations, got {chord0.shape} and {twist0.shape}")
     if not (np.all(np.isfinite(chord0)) and np.all(np.isfinite(twist0))):
         raise ValueError("initial chord and twist must be finite")
-    lower, upper = twist_bounds(v_axial, rpm, radius, hub_radius, meta["fractions"])
+    lower, upper = (turbine_twist_bounds if turbine else twist_bounds)(v_axial, rpm, radius, hub_radius,
+                                                                       meta["fractions"])
     matrix = meta["matrix"]
     if energy_loss_ref is None:
-        energy_loss_ref = ideal_energy_loss(thrust_target, v_axial, radius, hub_radius, rho)
+        energy_loss_ref = (ideal_turbine_energy_loss if turbine else ideal_energy_loss)(
+            thrust_target, v_axial, radius, hub_radius, rho)
     return {"chord_ratio_cp": np.clip(fit_design_values(matrix, chord0 / radius), *CHORD_RATIO_BOUNDS),
             "twist_cp": np.clip(fit_design_values(matrix, twist0), lower, upper),
             "twist_bounds": (lower, upper), "energy_loss_ref": float(energy_loss_ref)}

@@ -21,6 +21,7 @@ from bild_mdo.optimization.problem import (build_optimization_problem, case_desi
 from bild_mdo.optimization.result import (ANALYSIS_FAILED, RESULT_QUANTITIES, THRUST_TOLERANCE, OptimizationResult,
                                           count_invalid, invalid_flow_text, single_threaded_blas)
 from bild_mdo.optimization.scaling import CHORD_RATIO_REF, TWIST_REF, hessian_scaling, response_gradients
+from bild_mdo.optimization.turbine import THRUST_SIGN, turbine_metrics
 
 _CASE_OPTIONS = ("initial", "bild_chord", "bild_twist", "reference_chord", "energy_loss_ref")
 
@@ -121,7 +122,7 @@ def run_optimization(prob):
 def _settings(meta, restarts):
     return {"scaling": meta["scaling"], "parameterization": meta["parameterization"], "order": meta["order"],
             "tol": meta["tol"], "maxiter": meta["maxiter"], "restarts": int(restarts),
-            "num_radial": meta["num_radial"]}
+            "num_radial": meta["num_radial"], "pitch_slope_sign": THRUST_SIGN[meta.get("rotor_type", "propeller")]}
 
 
 def _slsqp(prob, restarts):
@@ -254,7 +255,7 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
     if prob._bild_optimization["optimizer"] == "slsqp":
         result = _slsqp(prob, restarts)
         result.setup_time = setup_time
-        return result
+        return _signed(prob._bild_optimization, result, case)
     start_chord = prob.get_val("chord_ratio_cp")[0].copy()
     start_twist = prob.get_val("twist_cp", units="rad")[0].copy()
     result = run_optimization(prob)
@@ -273,6 +274,14 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
     if not result.status.startswith(ANALYSIS_FAILED):
         result = _from_trimmed_start(prob, result, start_chord, start_twist)
     result.setup_time = setup_time
+    return _signed(prob._bild_optimization, result, case)
+
+
+def _signed(meta, result, case):
+    """A turbine's result with the turbine's metrics as its ``performance`` (:func:`turbine_metrics`)."""
+    if meta.get("rotor_type") == "turbine" and all(np.isfinite(list(result.performance.values()))):
+        v_axial, rpm, radius, _, _, altitude = (float(value) for value in case)
+        result.performance = turbine_metrics(result.performance, v_axial, rpm, radius, altitude)
     return result
 
 
@@ -404,11 +413,13 @@ def optimize_rotors(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.
         values = case_design_values(meta, *case, **{key: vals[k] for key, vals in per_case.items()})
         inputs = dict(zip(("v_axial", "rpm", "radius", "hub_radius", "thrust_target", "altitude"), case),
                       energy_loss_ref=values["energy_loss_ref"])
+        inputs["thrust_target"] *= THRUST_SIGN[meta.get("rotor_type", "propeller")]
         specs.append(CaseSpec(inputs, values["chord_ratio_cp"], values["twist_cp"], values["twist_bounds"]))
     with single_threaded_blas():
         results = optimize_in_lockstep(_pool(meta), specs, _settings(meta, restarts), batch_size)
-    for result in results:
+    for k, result in enumerate(results):
         result.setup_time += setup_time / count
+        results[k] = _signed(meta, result, [c[k] for c in columns])
     return results
 
 

@@ -14,29 +14,17 @@ Scalars give one design; 1-D arrays (broadcast against each other) give a batch 
 from __future__ import annotations
 
 import numpy as np
-import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.prandtl import LOSS_MODELS
-from bild_mdo.bild.turbine_group import TurbineBILDGroup
+from bild_mdo.bild.turbine_problem import TURBINE_DISTRIBUTIONS, TURBINE_VALUES, run_turbine_bild  # noqa: F401
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.fluid import fluid_arrays, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
 
 __all__ = ["TurbineDesign", "design_turbine"]
 
-#: Distributions of a design (name -> units).
-TURBINE_DISTRIBUTIONS = {"radii": "m", "chord": "m", "twist": "rad", "phi": "rad", "axial_induction": None,
-                         "tangential_induction": None, "loss_factor": None, "dthrust_dr": "N/m",
-                         "dtorque_dr": "N*m/m", "inflow_speed": "m/s", "dr": "m"}
-#: Per-design outputs (name -> units).
-TURBINE_VALUES = {"power": "W", "thrust": "N", "torque": "N*m", "power_coefficient": None,
-                  "thrust_coefficient": None, "tip_speed_ratio": None, "power_thrust_multiplier": "m/s",
-                  "ref_chord": "m", "alpha_star": "rad", "cl_star": None, "cd_star": None, "reynolds_ref": None,
-                  "rho": "kg/m**3", "mu": "Pa*s", "speed_of_sound": "m/s"}
-_REYNOLDS_RTOL = 1e-10
-_REYNOLDS_ITERATIONS = 30
 
 
 class TurbineDesign:
@@ -185,28 +173,8 @@ def design_turbine(wind_speed=10.0, tip_speed_ratio=None, rpm=None, radius=40.0,
         values["rpm"] = values.pop("tip_speed_ratio") * values["wind_speed"] / values["radius"] / RPM_TO_RAD_PER_S
     design_for = "thrust" if thrust is not None else ("ref_chord" if ref_chord is not None else "multiplier")
 
-    prob = om.Problem(reports=False)
-    prob.model.add_subsystem("turbine", TurbineBILDGroup(num_nodes=nn, num_radial=num_radial, num_blades=num_blades,
-                                                         polar=polar, loss_model=loss_model, design_for=design_for,
-                                                         use_atmosphere=fluid is None), promotes=["*"])
-    prob.setup()
-    for name in ("rpm", "radius", "hub_radius_ratio", "ref_radius_ratio"):
-        prob.set_val(name, values[name])
-    prob.set_val("v_axial", values["wind_speed"])
-    if fluid is None:
-        prob.set_val("altitude", values["altitude"])
-    else:
-        for name, arr in fluid_arrays(fluid, nn).items():
-            prob.set_val(name, arr)
-    if design_for == "ref_chord":
-        prob.set_val("ref_chord", values["ref_chord"])
-        prob.run_model()
-    else:
-        if design_for == "thrust":
-            prob.set_val("thrust_target", values["thrust"])
-        _section_fixed_point(prob, 0.05 * values["radius"])
-    out = {name: np.array(prob.get_val(name, units=units)) for name, units in
-           {**TURBINE_DISTRIBUTIONS, **TURBINE_VALUES}.items()}
+    out = run_turbine_bild(values, num_radial, num_blades, polar, loss_model, design_for,
+                           None if fluid is None else fluid_arrays(fluid, nn))
     out["radial_fractions"] = out["radii"] / values["radius"][:, None]
     result = {"wind_speed": values["wind_speed"], **{name: values[name] for name in
                                                      ("rpm", "radius", "hub_radius_ratio", "ref_radius_ratio")},
@@ -214,19 +182,3 @@ def design_turbine(wind_speed=10.0, tip_speed_ratio=None, rpm=None, radius=40.0,
     member = {"multiplier": "maximum power", "thrust": "thrust", "ref_chord": "ref_chord"}[design_for]
     return TurbineDesign(result, num_blades, getattr(polar, "name", type(polar).__name__), loss_model, member,
                          polar, is_batch)
-
-
-def _section_fixed_point(prob, guess):
-    """Run with the section point at the Reynolds number of the designed reference chord (a fixed point:
-    ``C_l*, C_d*`` vary slowly with the Reynolds number, so a few passes converge to 1e-10)."""
-    chord = guess
-    for _ in range(_REYNOLDS_ITERATIONS):
-        prob.set_val("section_chord", chord)
-        prob.run_model()
-        new = np.array(prob.get_val("ref_chord", units="m"))
-        new = np.where(new > 0.0, new, chord)  # an unloaded reference station keeps the guess
-        if np.all(np.abs(new - chord) <= _REYNOLDS_RTOL * new):
-            return
-        chord = new
-    raise om.AnalysisError("design_turbine: the section point's Reynolds number did not settle (the reference "
-                           f"chord changed by {np.max(np.abs(new - chord) / new):.3g} in the last pass)")

@@ -35,24 +35,12 @@ import math
 
 import numpy as np
 
-from bild_mdo.airfoil.text import sweep_polar
-from bild_mdo.atmosphere import isa
-from bild_mdo.bem.analyze import analyze_rotor
-from bild_mdo.bem.flow_states import INVALID_STATES
-from bild_mdo.constants import RPM_TO_REV_PER_S
-from bild_mdo.optimization.initial_design import CHORD_RATIO_BOUNDS
-
 from .cases import bild_setting
-from .feathering import least_loss_twist
-
-#: Loss model of the optimisation problem the optimum comes from.
-LOSS_MODEL = "tip_hub"
+from .pitch_trim import CASE_KEYS as _CASE_KEYS, LOSS_MODEL, MODEL_KEYS as _MODEL_KEYS, trim_batch  # noqa: F401
 
 #: Default relative tolerance of the optimality check (0.01 %, the acceptance criterion).
 DEFAULT_TOLERANCE = 1.0e-4
 
-_CASE_KEYS = ("v_axial", "rpm", "radius", "hub_radius", "altitude")
-_MODEL_KEYS = ("num_radial", "num_blades", "airfoil")
 
 
 @dataclasses.dataclass
@@ -100,15 +88,6 @@ def _row_text(row):
     return f"case {row.get('case_id')}"
 
 
-def _thrust_target(rows):
-    """``T* = C_T rho n^2 D^4`` of BILD's design (N), rho from the ISA at each case's altitude."""
-    c_t = np.array([row["bild_thrust_coefficient"] for row in rows], dtype=float)
-    rho = np.asarray(isa(np.array([row["altitude"] for row in rows], dtype=float)).rho, dtype=float)
-    n = np.array([row["rpm"] for row in rows], dtype=float) * RPM_TO_REV_PER_S
-    diameter = 2.0 * np.array([row["radius"] for row in rows], dtype=float)
-    return c_t * rho * n**2 * diameter**4
-
-
 def _check_rows(rows):
     for row in rows:
         missing = [k for k in ("bild_chord", "bild_twist", "bild_thrust_coefficient") + _CASE_KEYS + _MODEL_KEYS
@@ -127,65 +106,8 @@ def _check_rows(rows):
             raise ValueError(f"{_row_text(row)}: BILD's thrust coefficient must be positive, got {c_t!r}")
 
 
-def _trim_batch(rows, tol, max_iter, first_step, max_step):
-    """Safeguarded secant iteration on the pitch offset of every row at once (one configuration)."""
-    _, num_blades, airfoil = (rows[0][k] for k in _MODEL_KEYS)
-    polar = sweep_polar(airfoil)
-    chord = np.array([row["bild_chord"] for row in rows], dtype=float)
-    twist = np.array([row["bild_twist"] for row in rows], dtype=float)
-    case = {k: np.array([row[k] for row in rows], dtype=float) for k in _CASE_KEYS}
-    bound = CHORD_RATIO_BOUNDS[0] * case["radius"][:, None]
-    raised = chord < bound
-    chord = np.maximum(chord, bound)  # see trimmed_bild_energy_loss
-    if np.any(raised):
-        twist = least_loss_twist(chord, twist, raised, case, int(num_blades), polar, LOSS_MODEL)
-    target = _thrust_target(rows)
-
-    def analyse(offset):
-        result = analyze_rotor(chord, twist + offset[:, None], case["radius"], case["hub_radius"], case["rpm"],
-                               case["v_axial"], int(num_blades), polar, altitude=case["altitude"],
-                               loss_model=LOSS_MODEL, on_invalid="ignore")
-        # The secant steps may pass through invalid flow states; the trimmed design's are counted below.
-        invalid[:] = np.isin(np.rint(np.real(result.flow_state)), INVALID_STATES).sum(axis=-1)
-        return np.asarray(result.thrust) / target - 1.0, np.asarray(result.energy_loss)
-
-    size = len(rows)
-    invalid = np.zeros(size, dtype=int)
-    x = np.zeros(size)
-    f, energy = analyse(x)
-    untrimmed = f.copy()
-    x_prev, f_prev = None, None
-    # Thrust rises with collective pitch while the sections are not stalled; the first slope
-    # comes from a small probe step, later ones from the last two iterates.
-    slope = np.full(size, np.nan)
-    iterations = 0
-    while np.any(np.abs(f) > tol) and iterations < max_iter:
-        active = np.abs(f) > tol
-        if x_prev is None:
-            step = np.where(active, -np.sign(f) * first_step, 0.0)
-        else:
-            dx = x - x_prev
-            with np.errstate(divide="ignore", invalid="ignore"):
-                secant = (f - f_prev) / dx
-            usable = (dx != 0.0) & np.isfinite(secant) & (secant > 0.0)
-            slope = np.where(usable, secant, slope)
-            step = np.where(active & np.isfinite(slope), -f / slope, 0.0)
-            # No usable slope yet (the probe did not move T): probe again.
-            step = np.where(active & ~np.isfinite(slope), -np.sign(f) * first_step, step)
-        step = np.clip(step, -max_step, max_step)
-        moved = step != 0.0
-        if x_prev is None:
-            x_prev, f_prev = x.copy(), f.copy()
-        x_prev, f_prev = np.where(moved, x, x_prev), np.where(moved, f, f_prev)
-        x = x + step
-        f, energy = analyse(x)
-        iterations += 1
-    return dict(energy_loss=energy, thrust_residual=f, pitch_offset=x, untrimmed_thrust_error=untrimmed,
-                converged=np.abs(f) <= tol, iterations=iterations, invalid_stations=invalid,
-                twist=twist + x[:, None])
-
-
-def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, max_step=np.radians(2.0)):
+def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, max_step=np.radians(2.0),
+                             rotor_type="propeller"):
     """Trim every row's BILD geometry to its own thrust in the BEM model; return the BEM energy loss.
 
     For each case the twist is shifted uniformly (collective pitch) until
@@ -222,6 +144,8 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
         with ``converged`` False (no exception).
     first_step, max_step : float
         Probe step and largest step of the pitch offset (rad).
+    rotor_type : {'propeller', 'turbine'}
+        Rows of a turbine sweep (:mod:`~bild_mdo.verification.turbine_sweep`): T* from the turbine's ``C_T``.
 
     Returns
     -------
@@ -245,7 +169,7 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     for index, row in enumerate(rows):
         groups.setdefault(tuple(row[k] for k in _MODEL_KEYS), []).append(index)
     for indices in groups.values():
-        batch = _trim_batch([rows[i] for i in indices], tol, max_iter, first_step, max_step)
+        batch = trim_batch([rows[i] for i in indices], tol, max_iter, first_step, max_step, rotor_type)
         for name in out:
             out[name][indices] = batch[name]
         converged[indices] = batch["converged"]
@@ -366,7 +290,8 @@ class OptimalityCheck:
         return "\n".join(lines)
 
 
-def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None, section_point=None, ideal_loading="paper"):
+def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None, section_point=None, ideal_loading="paper",
+                     rotor_type="propeller"):
     """Check that no optimum has a higher energy loss than BILD's design trimmed to the same thrust.
 
     Parameters
@@ -385,6 +310,8 @@ def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None, section_point
         the summary then reports the trimmed design's energy excess for it.
     ideal_loading : str
         BILD's ideal loading of the rows (``'paper'`` or ``'exact'``), named by that line when not the paper's.
+    rotor_type : {'propeller', 'turbine'}
+        As for :func:`trimmed_bild_energy_loss`.
 
     Returns
     -------
@@ -404,7 +331,7 @@ def optimality_check(rows, tolerance=DEFAULT_TOLERANCE, trim=None, section_point
         if value is None or not math.isfinite(float(value)):
             raise ValueError(f"{_row_text(row)}: converged optimum without a finite energy loss")
     if trim is None:
-        trim = trimmed_bild_energy_loss(compared)
+        trim = trimmed_bild_energy_loss(compared, rotor_type=rotor_type)
     elif len(trim.case_ids) != len(compared) or any(
             int(a) != int(b["case_id"]) for a, b in zip(trim.case_ids, compared)):
         raise ValueError("trim must belong to the converged rows, in the same order")

@@ -75,7 +75,7 @@ def sweep_summary(spec, db_path, run):
             f"{len(run.computed_ids)} computed in {format_duration(run.wall_time)} ({run.num_failed} not converged).")
 
 
-def verification_table(rows, section_point=None, ideal_loading="paper"):
+def verification_table(rows, section_point=None, ideal_loading="paper", rotor_type="propeller"):
     """Table 3 of a results store, with the check that every optimum is an optimum.
 
     A failed optimality check must not cost the figures of a finished sweep,
@@ -90,6 +90,8 @@ def verification_table(rows, section_point=None, ideal_loading="paper"):
         BILD's trimmed energy excess over the optimum for it.
     ideal_loading : str
         BILD's ideal loading of the sweep, named in that report when not the paper's.
+    rotor_type : {'propeller', 'turbine'}
+        The sweep's rotors (a turbine sweep: :mod:`~bild_mdo.verification.turbine_sweep`).
 
     Returns
     -------
@@ -101,7 +103,8 @@ def verification_table(rows, section_point=None, ideal_loading="paper"):
     """
     table = table3(rows)
     try:
-        table.optimality = optimality_check(rows, section_point=section_point, ideal_loading=ideal_loading)
+        table.optimality = optimality_check(rows, section_point=section_point, ideal_loading=ideal_loading,
+                                            rotor_type=rotor_type)
     except (om.AnalysisError, ValueError, ArithmeticError) as exc:
         return table, str(exc)
     return table, None

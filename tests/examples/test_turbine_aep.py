@@ -18,7 +18,7 @@ pytestmark = pytest.mark.filterwarnings("ignore:.*Reynolds numbers outside the t
 
 @pytest.fixture(scope="module")
 def run():
-    return turbine_aep.main(num_radial=10, verbose=False)
+    return turbine_aep.main(num_radial=10, verbose=False, num_wind_speeds=9)
 
 
 def test_the_optimum_is_interior_and_stationary(run):
@@ -44,4 +44,31 @@ def test_aep_totals_through_the_model(run):
     data = prob.check_totals(of=["annual_energy", "capacity_factor"],
                              wrt=["rpm", "radius", "thrust_target", "v_axial", "aep.rated_power", "aep.weibull_scale",
                                   "aep.weibull_shape"], method="cs", out_stream=None)
+    assert_totals_match(data, atol=1e-6, rtol=1e-6)
+
+
+def test_pitch_trimmed_curve_summary(run, capsys):
+    prob, _, best, _, _ = run
+    # The BEM curve of a Reynolds-frozen polar has the design C_P at every region-2 wind speed, so its rated
+    # wind speed and AEP are the constant-C_P model's (AnnualEnergyComp) to solver tolerance and to the error of
+    # the 5-point Gauss-Lobatto sum of region 2 at this size (its convergence: tests/energy, cubic curve).
+    assert best["rated wind speed, BEM (m/s)"] == pytest.approx(best["rated wind speed (m/s)"], rel=1e-9)
+    assert best["AEP, BEM curve (GWh)"] == pytest.approx(best["AEP (GWh)"], rel=1e-5)
+    # Physical expectations: the thrust peaks at rated and falls as the blade feathers; the pitch at cut-out is
+    # of the order of the NREL 5-MW rotor's 23 deg (NREL/TP-500-38060, Table 7-1).
+    assert best["peak thrust (kN)"] == best["thrust at rated (kN)"]
+    assert best["thrust at cut-out (kN)"] < 0.5 * best["peak thrust (kN)"]
+    assert 10.0 < best["pitch at cut-out (deg)"] < 30.0
+    np.testing.assert_allclose(prob.get_val("curve.power")[0, -1], turbine_aep.RATED_POWER, rtol=1e-9)
+    turbine_aep.main(num_radial=6, num_wind_speeds=7)
+    text = capsys.readouterr().out
+    assert "Pitch-trimmed BEM power curve" in text and "pitch at cut-out (deg)" in text
+    assert "AEP, BEM curve (GWh)" in text and "peak thrust (kN)" in text
+
+
+def test_bem_curve_aep_totals_through_the_model(run):
+    prob = run[0]
+    data = prob.check_totals(of=["curve.annual_energy", "curve.capacity_factor"],
+                             wrt=["rpm", "radius", "thrust_target", "v_axial", "curve.rated_power",
+                                  "curve.weibull_scale", "curve.weibull_shape"], method="cs", out_stream=None)
     assert_totals_match(data, atol=1e-6, rtol=1e-6)

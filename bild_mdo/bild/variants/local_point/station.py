@@ -22,7 +22,7 @@ import openmdao.api as om
 from bild_mdo.airfoil.load_path_table import load_path_table
 from bild_mdo.bem.prandtl import loss_inputs
 from bild_mdo.bild.feasibility import report_station_status
-from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, StationFlow, take
+from bild_mdo.bild.variants.local_point.load_path_model import FLOW_ARRAYS, INPUTS, StationFlow, take
 from bild_mdo.bild.variants.local_point.options import declare_local_options, placeholder_point
 from bild_mdo.utils.jet import eliminate, jacobian
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
@@ -112,10 +112,16 @@ class LocalStationComp(om.ExplicitComponent):
     def _flow(self, inputs, real=True):
         get = (lambda name: np.real(inputs[name])) if real else (lambda name: inputs[name])
         shape = inputs["v_theta"].shape
-        node = {field: np.broadcast_to(get(name)[:, None], shape).ravel() for name, field in _NODE.items()}
+        fields = {field: name for name, field in {**_NODE, **_DIST}.items()}
+        # One [8, n] block whose rows are the flow's arrays: the rows the compiled solves read, without a copy
+        # (flow_rows of reynolds_exact.solve).
+        values = [get(fields[field]) for field in FLOW_ARRAYS]
+        rows = np.empty((len(values), shape[0] * shape[1]), dtype=np.result_type(*values))
+        for row, value in zip(rows, values):
+            row.reshape(shape)[...] = value[:, None] if value.ndim == 1 else value
         opts = self.options
-        return StationFlow(v_theta=get("v_theta").ravel(), r=get("radii").ravel(), **node,
-                           num_blades=opts["num_blades"], loss_model=opts["loss_model"], chord_form=opts["chord_form"])
+        return StationFlow(*rows, num_blades=opts["num_blades"], loss_model=opts["loss_model"],
+                           chord_form=opts["chord_form"])
 
     def _solve(self, inputs):
         """Solution and outputs; designs whose inputs did not change keep their states."""

@@ -115,5 +115,13 @@ def solve_stations(table, flow, start=None, first_label=None):
 
 def flow_rows(flow):
     """The arrays of a :class:`~bild_mdo.bild.variants.local_point.load_path_model.StationFlow` as the rows the
-    kernels read."""
-    return np.stack([np.asarray(getattr(flow, name), dtype=float) for name in FLOW_ARRAYS])
+    kernels read (the block the arrays are rows of, where they are: :class:`~bild_mdo.bild.variants.local_point.
+    station.LocalStationComp` builds them so)."""
+    arrays = [getattr(flow, name) for name in FLOW_ARRAYS]
+    base = arrays[0].base
+    if (isinstance(base, np.ndarray) and base.dtype == float and base.shape == (len(arrays), arrays[0].size)
+            and base.flags.c_contiguous and all(a.base is base and a.dtype == float for a in arrays)
+            and all(np.shares_memory(a, base[k]) and a.ctypes.data == base[k].ctypes.data
+                    for k, a in enumerate(arrays))):
+        return base
+    return np.stack([np.asarray(a, dtype=float) for a in arrays])

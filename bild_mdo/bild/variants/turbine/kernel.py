@@ -151,7 +151,7 @@ def _bracketed(phi, mu, args):
 
 
 def solve_loading(mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, num_blades, loss_model):
-    """Inflow angle of (T3) at every station (real 1-D arrays of one length).
+    """Inflow angle of (T3) at every station (real arrays that broadcast to one 1-D shape).
 
     Returns
     -------
@@ -161,26 +161,30 @@ def solve_loading(mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, num
         :data:`LOADED`; :data:`UNLOADED` (``mu >= G(phi0)``: no load pays its thrust, zero chord);
         :data:`FAILED` (an input outside ``V, x, r > 0``, ``s >= 0``, not finite, or not converged).
     """
-    hi = unloaded_angle(v_axial, v_theta)
-    lo = half_induction_angle(v_axial, v_theta, drag_to_lift)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        domain = (v_axial > 0.0) & (v_theta > 0.0) & (drag_to_lift >= 0.0) & (r > 0.0) & np.isfinite(lo + hi)
-    status = np.where(domain, LOADED, FAILED)
-    phi = np.where(domain, hi, 0.0)
-    active = np.flatnonzero(domain)
-    if active.size:
-        from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
-        from bild_mdo.bild.variants.turbine.compiled import solve_stations
+    shape = np.broadcast(mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius).shape
+    flat = [np.broadcast_to(a, shape) for a in (mu, v_axial, drag_to_lift, radius, hub_radius, v_theta, r)]
+    return _solve_compiled(*flat, 1, num_blades, loss_model)
 
-        flat = [np.ascontiguousarray(np.broadcast_to(a, phi.shape)[active], dtype=float)
-                for a in (mu, v_axial, v_theta, drag_to_lift, r, radius, hub_radius)]
-        root, code = np.empty(active.size), np.empty(active.size, dtype=np.int64)
-        # First iterate: Glauert's optimum rotor with wake rotation, phi = (2/3) atan(V/x) (the member mu = 0
-        # without drag and tip loss).
-        solve_stations(*flat, lo[active], hi[active], (2.0 / 3.0) * hi[active], num_blades,
-                       LOSS_CODES[loss_model], _MAX_ITERATIONS, (LOADED, UNLOADED, FAILED), BARRIER, root, code)
-        phi[active] = root
-        status[active] = code
+
+def solve_designs(mu, v_axial, drag_to_lift, radius, hub_radius, v_theta, r, num_blades, loss_model):
+    """:func:`solve_loading` of designs: ``mu, v_axial, drag_to_lift, radius, hub_radius`` per design (``[nn]``),
+    ``v_theta`` and ``r`` per station (``[nn, nr]``); ``phi`` and ``status`` are ``[nn, nr]``."""
+    shape = np.broadcast(v_theta, r).shape
+    node = [np.broadcast_to(a, shape[:1]) for a in (mu, v_axial, drag_to_lift, radius, hub_radius)]
+    return _solve_compiled(*node, np.broadcast_to(v_theta, shape), np.broadcast_to(r, shape), shape[1], num_blades,
+                           loss_model)
+
+
+def _solve_compiled(mu, v_axial, drag_to_lift, radius, hub_radius, v_theta, r, per, num_blades, loss_model):
+    """:func:`~bild_mdo.bild.variants.turbine.compiled.solve_stations` of ``per`` stations a design."""
+    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
+    from bild_mdo.bild.variants.turbine.compiled import solve_stations
+
+    node = [np.ascontiguousarray(a, dtype=float) for a in (mu, v_axial, drag_to_lift, radius, hub_radius)]
+    phi, status = np.empty(v_theta.shape), np.empty(v_theta.shape, dtype=np.int64)
+    stations = [np.ascontiguousarray(a, dtype=float).ravel() for a in (v_theta, r)]
+    solve_stations(*node, *stations, per, num_blades, LOSS_CODES[loss_model], _MAX_ITERATIONS,
+                   (LOADED, UNLOADED, FAILED), BARRIER, phi.reshape(-1), status.reshape(-1))
     return phi, status
 
 
@@ -204,6 +208,83 @@ def station_jets(phi, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, num
     f = Jet(loss.F, {"phi": loss.dF_dphi, "r": loss.dF_dr, "radius": loss.dF_dradius,
                      "hub_radius": loss.dF_dhub_radius})
     return {"u": u, "w": w, "W": big_a, "F": f, "t": u * (v - u), "q": u * (w - x), "normal": normal}
+
+
+#: Outputs of :func:`station_loads`, in the order of the compiled kernel's arguments.
+LOAD_NAMES = ("axial_induction", "tangential_induction", "u_axial", "inflow_speed", "loss_factor", "dthrust_dr",
+              "dtorque_dr")
+#: Outputs of :func:`station_chords`, in the order of the compiled kernel's arguments.
+CHORD_NAMES = ("chord", "twist", "lift_coefficient", "drag_coefficient")
+
+
+def _into(outputs, names, shape, fill):
+    """``fill(arrays)`` on the output vector's views of ``names`` (C-contiguous ``[nn, nr]``, written in place),
+    else on new arrays then copied into ``outputs``; returns what ``fill`` returns."""
+    views = [outputs[name] for name in names]
+    direct = all(view.flags.c_contiguous and view.flags.writeable and view.shape == shape for view in views)
+    arrays = views if direct else [np.empty(shape) for _ in names]
+    result = fill(arrays)
+    if not direct:
+        for name, value in zip(names, arrays):
+            outputs[name] = value
+    return result
+
+
+def _node(*arrays):
+    return [np.ascontiguousarray(a, dtype=float) for a in arrays]
+
+
+def station_loads(phi, v_theta, r, v_axial, drag_to_lift, radius, hub_radius, rho, num_blades, loss_model, outputs):
+    """Values of the loads of :class:`~bild_mdo.bild.variants.turbine.turbine_loads.TurbineLoadsComp` (those of
+    :func:`station_jets`, compiled) written into ``outputs`` (:data:`LOAD_NAMES`, real ``[nn, nr]``); per-design
+    ``v_axial, drag_to_lift, radius, hub_radius, rho`` (``[nn]``), the rest ``[nn, nr]``."""
+    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
+    from bild_mdo.bild.variants.turbine.compiled import station_loads as compiled
+
+    args = _node(phi, v_theta, r, v_axial, drag_to_lift, radius, hub_radius, rho)
+    _into(outputs, LOAD_NAMES, np.shape(phi),
+          lambda out: compiled(*args, num_blades, LOSS_CODES[loss_model], *out))
+
+
+def station_chords(dthrust_dr, phi, inflow_speed, rho, alpha_star, cl_star, cd_star, num_blades, outputs):
+    """Values of :class:`~bild_mdo.bild.variants.turbine.turbine_chord.TurbineChordComp`, compiled, written into
+    ``outputs`` (:data:`CHORD_NAMES`); per-design ``rho, alpha_star, cl_star, cd_star``.  Returns False where a
+    normal-force coefficient ``C_l* cos(phi) + C_d* sin(phi)`` is not positive."""
+    from bild_mdo.bild.variants.turbine.compiled import station_chords as compiled
+
+    args = _node(dthrust_dr, phi, inflow_speed, rho, alpha_star, cl_star, cd_star)
+    return _into(outputs, CHORD_NAMES, np.shape(phi), lambda out: compiled(*args, num_blades, *out))
+
+
+def reference_chord(phi, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, cl, num_blades, loss_model):
+    """Chord (T2) in m at ``phi`` of one station per design (real ``[nn]`` arrays; the value of :func:`chord_jet`,
+    compiled)."""
+    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
+    from bild_mdo.bild.variants.turbine.compiled import reference_chords
+
+    args = _node(phi, v_axial, v_theta, drag_to_lift, r, radius, hub_radius, cl)
+    chord = np.empty(args[0].shape)
+    reference_chords(*args, num_blades, LOSS_CODES[loss_model], chord)
+    return chord
+
+
+def solve_reference_chord(v_axial, v_theta, drag_to_lift, r, radius, hub_radius, cl, ref_chord, num_blades,
+                          loss_model):
+    """``phi`` of one station per design (real ``[nn]`` arrays) whose chord (T2) is ``ref_chord``, solved on
+    ``[phi_half, phi0]`` (the bracketed Newton solver from the midpoint, compiled), and ``G(phi)``.
+
+    Returns ``(phi, mu, chord_half, status)``: ``chord_half`` the chord at ``phi_half``; ``status`` 0, 1 where
+    ``ref_chord`` is not in ``(0, chord_half)``, 2 where the solve failed or ``phi`` lies past the maximum of the
+    annulus thrust.
+    """
+    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
+    from bild_mdo.bild.variants.turbine.compiled import solve_reference_chords
+
+    args = _node(v_axial, v_theta, drag_to_lift, r, radius, hub_radius, cl, ref_chord)
+    phi, mu, chord_half = (np.empty(args[0].shape) for _ in range(3))
+    status = np.empty(args[0].shape, dtype=np.int64)
+    solve_reference_chords(*args, num_blades, LOSS_CODES[loss_model], _MAX_ITERATIONS, phi, mu, chord_half, status)
+    return phi, mu, chord_half, status
 
 
 def chord_jet(jets, r, num_blades, cl):

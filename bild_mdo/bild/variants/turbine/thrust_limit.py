@@ -4,8 +4,9 @@ import openmdao.api as om
 
 from bild_mdo.bem.blade_element import declare_section_options
 from bild_mdo.bem.prandtl import loss_inputs
-from bild_mdo.bild.variants.turbine.kernel import implicit_sensitivities, station_angle, station_jets
-from bild_mdo.bild.variants.turbine.turbine_inflow import add_multiplier, loading_arguments, raise_failed
+from bild_mdo.bild.variants.turbine.kernel import implicit_sensitivities, station_jets
+from bild_mdo.bild.variants.turbine.turbine_inflow import (add_multiplier, loading_arguments, raise_failed,
+                                                          station_angles)
 from bild_mdo.utils.newton import bracketed_newton
 from bild_mdo.utils.options import add_inputs
 from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
@@ -61,7 +62,7 @@ class ThrustLimitComp(om.ExplicitComponent):
         v_theta, radii, dr = (inputs[name][idx] for name in ("v_theta", "radii", "dr"))
         args = loading_arguments(sub, v_theta, radii, mu)
         opts = (self.options["num_blades"], self.options["loss_model"])
-        phi, status = station_angle(*args, *opts)
+        phi, status = station_angles(sub, v_theta, radii, mu, *opts)
         nr = self.options["num_radial"]
         raise_failed(self, status, lambda i: f"node {idx[i // nr]}, station {i % nr}")
         jets = station_jets(phi, *args[1:], *opts)

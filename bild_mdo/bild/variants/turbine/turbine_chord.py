@@ -2,6 +2,7 @@
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.variants.turbine.kernel import station_chords
 from bild_mdo.utils.options import add_inputs, add_outputs, declare_size_options
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -50,17 +51,25 @@ class TurbineChordComp(om.ExplicitComponent):
         self.declare_partials("lift_coefficient", "cl_star", rows=rows, cols=cols, val=1.0)
         self.declare_partials("drag_coefficient", "cd_star", rows=rows, cols=cols, val=1.0)
 
+    def _not_positive(self):
+        raise om.AnalysisError(f"{self.msginfo}: the normal-force coefficient C_l cos(phi) + C_d sin(phi) is "
+                               "not positive: the section point needs C_l* > 0 (check the airfoil)")
+
     def _terms(self, inputs):
         phi = inputs["phi"]
         cl, cd = inputs["cl_star"][:, None], inputs["cd_star"][:, None]
         normal = cl * np.cos(phi) + cd * np.sin(phi)
         if np.any(np.real(normal) <= 0.0):
-            raise om.AnalysisError(f"{self.msginfo}: the normal-force coefficient C_l cos(phi) + C_d sin(phi) is "
-                                   "not positive: the section point needs C_l* > 0 (check the airfoil)")
+            self._not_positive()
         scale = 2.0 / (inputs["rho"][:, None] * inputs["inflow_speed"] ** 2 * self.options["num_blades"])
         return phi, cl, cd, normal, scale
 
     def compute(self, inputs, outputs):
+        if not np.iscomplexobj(inputs["phi"]):
+            names = ("dthrust_dr", "phi", "inflow_speed", "rho", "alpha_star", "cl_star", "cd_star")
+            if not station_chords(*(inputs[name] for name in names), self.options["num_blades"], outputs):
+                self._not_positive()
+            return
         phi, cl, cd, normal, scale = self._terms(inputs)
         outputs["chord"] = scale * inputs["dthrust_dr"] / normal
         outputs["twist"] = phi - inputs["alpha_star"][:, None]

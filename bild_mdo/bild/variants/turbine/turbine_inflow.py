@@ -4,7 +4,7 @@ import openmdao.api as om
 
 from bild_mdo.bem.blade_element import declare_section_options
 from bild_mdo.bem.prandtl import loss_inputs
-from bild_mdo.bild.variants.turbine.kernel import FAILED, implicit_sensitivities, station_angle
+from bild_mdo.bild.variants.turbine.kernel import FAILED, implicit_sensitivities, solve_designs, station_angle
 from bild_mdo.utils.options import add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -28,6 +28,16 @@ def loading_arguments(inputs, v_theta, radii, mu):
     mu = np.broadcast_to(np.reshape(mu, (-1, 1)), shape).ravel()
     return (mu, node[0], np.broadcast_to(v_theta, shape).ravel(), ratio, np.broadcast_to(radii, shape).ravel(),
             node[1], node[2])
+
+
+def station_angles(inputs, v_theta, radii, mu, num_blades, loss_model):
+    """Flat ``phi`` and status of the stations (:func:`loading_arguments`'s order): the real solve design by design
+    (:func:`~bild_mdo.bild.variants.turbine.kernel.solve_designs`), or under complex step :func:`station_angle`."""
+    if any(np.iscomplexobj(a) for a in (v_theta, radii, mu) + tuple(inputs[name] for name in _NODE)):
+        return station_angle(*loading_arguments(inputs, v_theta, radii, mu), num_blades, loss_model)
+    phi, status = solve_designs(mu, inputs["v_axial"], inputs["cd_star"] / inputs["cl_star"], inputs["radius"],
+                                inputs["hub_radius"], v_theta, radii, num_blades, loss_model)
+    return phi.ravel(), status.ravel()
 
 
 def raise_failed(component, status, where):
@@ -87,7 +97,8 @@ class TurbineInflowComp(om.ExplicitComponent):
         return loading_arguments(inputs, inputs["v_theta"], inputs["radii"], inputs["power_thrust_multiplier"])
 
     def compute(self, inputs, outputs):
-        phi, status = station_angle(*self._args(inputs), self.options["num_blades"], self.options["loss_model"])
+        phi, status = station_angles(inputs, inputs["v_theta"], inputs["radii"], inputs["power_thrust_multiplier"],
+                                     self.options["num_blades"], self.options["loss_model"])
         nr = self.options["num_radial"]
         raise_failed(self, status, lambda i: f"node {i // nr}, station {i % nr}")
         outputs["phi"] = phi.reshape(outputs["phi"].shape)
@@ -95,7 +106,9 @@ class TurbineInflowComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         args = [np.real(a) for a in self._args(inputs)]
         opts = (self.options["num_blades"], self.options["loss_model"])
-        phi, status = station_angle(*args, *opts)
+        real = {name: np.real(inputs[name]) for name in _NODE}
+        phi, status = station_angles(real, np.real(inputs["v_theta"]), np.real(inputs["radii"]),
+                                     np.real(inputs["power_thrust_multiplier"]), *opts)
         sens = implicit_sensitivities(phi, args[0], status, *args[1:], *opts)
         cl = np.repeat(np.real(inputs["cl_star"]), self.options["num_radial"])
         names = {"power_thrust_multiplier": "mu", "v_axial": "v_axial", "v_theta": "v_theta", "radii": "r",

@@ -4,7 +4,7 @@ import openmdao.api as om
 
 from bild_mdo.bem.blade_element import declare_section_options
 from bild_mdo.bem.prandtl import loss_inputs
-from bild_mdo.bild.variants.turbine.kernel import station_jets
+from bild_mdo.bild.variants.turbine.kernel import station_jets, station_loads
 from bild_mdo.utils.jet import variable
 from bild_mdo.utils.options import add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -81,9 +81,14 @@ class TurbineLoadsComp(om.ExplicitComponent):
                 "dthrust_dr": thrust, "dtorque_dr": rho * r_jet * r_jet * jets["F"] * jets["q"]}, ratio
 
     def compute(self, inputs, outputs):
-        jets, _ = self._jets(inputs)
-        for name, jet in jets.items():
-            outputs[name] = jet.v
+        if np.iscomplexobj(inputs["phi"]):
+            jets, _ = self._jets(inputs)
+            for name, jet in jets.items():
+                outputs[name] = jet.v
+            return
+        station_loads(inputs["phi"], inputs["v_theta"], inputs["radii"], inputs["v_axial"],
+                      inputs["cd_star"] / inputs["cl_star"], inputs["radius"], inputs["hub_radius"], inputs["rho"],
+                      self.options["num_blades"], self.options["loss_model"], outputs)
 
     def compute_partials(self, inputs, partials):
         jets, ratio = self._jets(inputs)

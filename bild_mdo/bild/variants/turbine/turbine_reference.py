@@ -5,11 +5,10 @@ import openmdao.api as om
 from bild_mdo.bem.blade_element import declare_section_options
 from bild_mdo.bem.prandtl import loss_inputs
 from bild_mdo.bild.variants.turbine.kernel import (
-    chord_jet, half_induction_angle, implicit_sensitivities, residual_jacobian, station_angle, station_jets,
-    turbine_terms, unloaded_angle)
+    chord_jet, implicit_sensitivities, reference_chord, residual_jacobian, solve_reference_chord, station_angle,
+    station_jets, turbine_terms)
 from bild_mdo.bild.variants.turbine.turbine_inflow import add_multiplier
 from bild_mdo.utils.jet import variable
-from bild_mdo.utils.newton import bracketed_newton
 from bild_mdo.utils.options import add_inputs, add_outputs
 from bild_mdo.utils.sparsity import node_wrt_node
 
@@ -82,48 +81,43 @@ class TurbineReferenceStationComp(om.ExplicitComponent):
         return chord_jet(jets, variable(args[3], "r"), self.options["num_blades"], cl)
 
     def _solve_chord(self, inputs):
-        """Real ``phi_ref`` with ``c(phi_ref) = c_ref``."""
+        """Real ``phi_ref`` with ``c(phi_ref) = c_ref`` and the multiplier there."""
         args = [np.real(a) for a in self._args(inputs)]
         cl, c_ref = np.real(inputs["cl_star"]), np.real(inputs["ref_chord"])
-        lo, hi = half_induction_angle(*args[:3]), unloaded_angle(*args[:2])
-        c_lo = self._chord(lo, args, cl).v
-        bad = ~(c_lo > c_ref) | ~(c_ref > 0.0)
-        if np.any(bad):
-            i = int(np.flatnonzero(bad)[0])
+        phi, mu, c_lo, status = solve_reference_chord(*args, cl, c_ref, self.options["num_blades"],
+                                                      self.options["loss_model"])
+        if np.any(status == 1):
+            i = int(np.flatnonzero(status == 1)[0])
             raise om.AnalysisError(f"{self.msginfo}: ref_chord {c_ref[i]:.4g} m (node {i}) is not in (0, "
                                    f"{c_lo[i]:.4g}) m, the chord that loads the reference station to a = 1/2: "
                                    "reduce ref_chord (or raise the tip-speed ratio)")
-
-        def function(x, idx):
-            jet = self._chord(x, [a[idx] for a in args], cl[idx])
-            return jet.v - c_ref[idx], jet.partial("phi")
-
-        result = bracketed_newton(function, lo, hi, c_lo - c_ref, quadratic_stop=True)
-        terms = turbine_terms(result.x, *args, self.options["num_blades"], self.options["loss_model"])
-        bad = ~result.converged | ~(terms.thrust_slope < 0.0)
-        if np.any(bad):
-            i = int(np.flatnonzero(bad)[0])
+        if np.any(status == 2):
+            i = int(np.flatnonzero(status == 2)[0])
             raise om.AnalysisError(f"{self.msginfo}: ref_chord {c_ref[i]:.4g} m (node {i}) loads the reference "
                                    "station past its maximum thrust, where the turbine loading does not exist: "
                                    "reduce ref_chord")
-        return result.x, args, cl
+        return phi, args, cl, mu
 
     def compute(self, inputs, outputs):
         opts = (self.options["num_blades"], self.options["loss_model"])
         args = self._args(inputs)
+        given = "power_thrust_multiplier" if self.options["given"] == "multiplier" else "ref_chord"
+        complex_step = any(np.iscomplexobj(a) for a in args + (inputs["cl_star"], inputs[given]))
         if self.options["given"] == "multiplier":
             phi, _ = station_angle(inputs["power_thrust_multiplier"], *args, *opts)
             outputs["phi_ref"] = phi
-            outputs["ref_chord"] = self._chord(phi, args, inputs["cl_star"]).v
+            outputs["ref_chord"] = (self._chord(phi, args, inputs["cl_star"]).v if complex_step else
+                                    reference_chord(phi, *args, inputs["cl_star"], *opts))
             return
-        phi, real_args, cl = self._solve_chord(inputs)
-        if np.iscomplexobj(inputs["ref_chord"]) or any(np.iscomplexobj(a) for a in args):
+        phi, real_args, cl, mu = self._solve_chord(inputs)
+        if complex_step:
             jet = self._chord(phi, real_args, cl)
             value = self._chord(phi, args, inputs["cl_star"]).v - inputs["ref_chord"]
             phi = phi - 1j * np.imag(value) / jet.partial("phi")
-        terms = turbine_terms(phi, *args, *opts)
+            terms = turbine_terms(phi, *args, *opts)
+            mu = terms.power_slope / terms.thrust_slope
         outputs["phi_ref"] = phi
-        outputs["power_thrust_multiplier"] = terms.power_slope / terms.thrust_slope
+        outputs["power_thrust_multiplier"] = mu
 
     def compute_partials(self, inputs, partials):
         opts = (self.options["num_blades"], self.options["loss_model"])
@@ -139,7 +133,7 @@ class TurbineReferenceStationComp(om.ExplicitComponent):
             out = "ref_chord"
             d_cl_direct, sens_cl = -chord.v / cl, 0.0
         else:
-            phi, args, _ = self._solve_chord(inputs)
+            phi, args, _, _ = self._solve_chord(inputs)
             chord = self._chord(phi, args, cl)
             c_phi = chord.partial("phi")
             sens = {name: -chord.partial(name) / c_phi for name in ("v_axial", "v_theta", "drag_to_lift", "r",

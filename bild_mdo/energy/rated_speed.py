@@ -1,0 +1,84 @@
+"""RatedSpeedGroup: the rated wind speed of a variable-speed rotor from its BEM power at the design tip-speed ratio."""
+from __future__ import annotations
+
+import numpy as np
+import openmdao.api as om
+
+from bild_mdo.bem.inclined_bem_group import InclinedBEMGroup
+from bild_mdo.bem.metrics import TURBINE_OUTPUTS
+from bild_mdo.energy.pitch_trim import BEM_INPUTS, NEWTON_ATOL, ExplainedNewton
+from bild_mdo.energy.rated_wind_speed import RatedWindSpeedComp
+from bild_mdo.energy.rotor_speed import RotorSpeedComp
+from bild_mdo.utils.options import declare_size_options
+
+#: Power coefficient of the first guess of the rated wind speed (any positive value converges).
+GUESS_POWER_COEFFICIENT = 0.45
+
+
+class RatedSpeedGroup(om.Group):
+    """Rated wind speed ``V_r``: the BEM power at ``lambda``, zero pitch and wind ``V_r`` equals ``rated_power``.
+
+    ::
+
+        speed   RotorSpeedComp(capped=False)   rpm = lambda V_r / R
+        bem     InclinedBEMGroup(turbine)      power at (V_r, rpm), pitch 0
+        rated   RatedWindSpeedComp             V_r (P_r / P)**(1/3) = V_r
+
+    A Newton solver with a direct linear solver converges the loop, started every time from
+    ``V_r = (P_r / (1/2 rho pi R^2 C_P0))**(1/3)``, ``C_P0 =`` :data:`GUESS_POWER_COEFFICIENT`
+    (the residual is nearly linear in ``V_r``, :mod:`bild_mdo.energy.rated_wind_speed`).  The other
+    BEM outputs at rated (``thrust`` ... of :data:`~bild_mdo.bem.metrics.TURBINE_OUTPUTS`) are outputs too.
+
+    Options
+    -------
+    num_nodes, num_radial, num_blades, polar, loss_model, on_invalid
+        Rotors and the options of :class:`~bild_mdo.bem.inclined_bem_group.InclinedBEMGroup`.
+
+    Inputs
+    ------
+    tip_speed_ratio[nn] (-), rated_power[nn] (W), chord[nn, nr] (m), twist[nn, nr] (rad), radius[nn] (m),
+    hub_radius[nn] (m), rho[nn] (kg/m**3), mu[nn] (Pa*s), speed_of_sound[nn] (m/s)
+
+    Outputs
+    -------
+    rated_wind_speed[nn] (m/s) and the turbine metrics [nn] at rated (``power`` = ``rated_power``, ``thrust`` ...;
+    the tip-speed ratio is the input)
+    """
+
+    def initialize(self):
+        declare_size_options(self.options)
+        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
+        self.options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
+        self.options.declare("loss_model", default="tip_hub", desc="Prandtl losses")
+        self.options.declare("on_invalid", default="warn", desc="BEM stations in an invalid flow state")
+
+    def setup(self):
+        opts = self.options
+        nn, nr = opts["num_nodes"], opts["num_radial"]
+        self.add_subsystem("speed", RotorSpeedComp(num_nodes=nn, capped=False),
+                           promotes_inputs=["tip_speed_ratio", "radius"])
+        self.add_subsystem("bem", InclinedBEMGroup(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
+                                                   polar=opts["polar"], loss_model=opts["loss_model"],
+                                                   on_invalid=opts["on_invalid"], rotor_type="turbine",
+                                                   use_atmosphere=False),
+                           promotes_inputs=[name for name in BEM_INPUTS if name not in ("v_axial", "rpm")],
+                           promotes_outputs=[name for name in TURBINE_OUTPUTS if name != "tip_speed_ratio"])
+        self.add_subsystem("rated", RatedWindSpeedComp(num_nodes=nn), promotes_inputs=["power", "rated_power"],
+                           promotes_outputs=["rated_wind_speed"])
+        self.connect("rated_wind_speed", "speed.wind_speed")
+        self.connect("rated_wind_speed", "bem.v_axial")
+        self.connect("speed.rpm", "bem.rpm")
+        hint = "The rated wind speed (BEM power at the design tip-speed ratio equal to rated power) was not found."
+        self.nonlinear_solver = ExplainedNewton(hint, solve_subsystems=True, maxiter=20, atol=NEWTON_ATOL,
+                                                rtol=1e-14, iprint=-1, err_on_non_converge=True)
+        self.linear_solver = om.DirectSolver()
+
+    def guess_nonlinear(self, inputs, outputs, residuals):
+        if self.under_complex_step:
+            # A complex step perturbs the converged real solve: starting from it, the one Newton iteration
+            # OpenMDAO forces under complex step carries the exact derivative in the imaginary part (a fresh
+            # guess would leave it at the accuracy of the first iterate).
+            return
+        area = np.pi * np.real(inputs["bem.stations.radius"]) ** 2
+        gain = 0.5 * np.real(inputs["bem.inflow.rho"]) * area * GUESS_POWER_COEFFICIENT
+        outputs["rated_wind_speed"] = (np.real(inputs["rated.rated_power"]) / gain) ** (1.0 / 3.0)
