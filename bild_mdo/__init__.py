@@ -33,7 +33,8 @@ from bild_mdo.results.turbine_design import TurbineDesign, design_turbine
 __all__ = [
     "AnalyticPolar", "AnnualEnergyComp", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
-    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "PowerCurveGroup", "RotorGeometry", "RotorNoiseGroup",
+    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "PowerCurveGroup", "RotorGeometry",
+    "RotorNoiseGroup",
     "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "TurbineBILDGroup", "TurbineDesign", "__version__",
     "analyze_rotor", "combine_noise", "design_mil", "design_rotor", "design_turbine", "get_polar", "isa", "naca4412", "off_design_sweep", "optimize_rotor",
     "read_geometry", "resolve_polar", "rotor_noise", "spanwise_polar", "write_geometry",

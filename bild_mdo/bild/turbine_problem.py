@@ -57,8 +57,6 @@ def run_turbine_bild(values, num_radial, num_blades, polar, loss_model, design_f
         if design_for == "thrust":
             prob.set_val("thrust_target", values["thrust"])
         _section_fixed_point(prob, 0.05 * values["radius"])
-    out = {name: np.array(prob.get_val(name, units=units)) for name, units in
-           {**TURBINE_DISTRIBUTIONS, **TURBINE_VALUES}.items()}
     return {name: np.array(prob.get_val(name, units=units)) for name, units in
             {**TURBINE_DISTRIBUTIONS, **TURBINE_VALUES}.items()}
 

@@ -26,12 +26,12 @@ from bild_mdo.verification.statistics import format_table3
 from bild_mdo.verification.store import ResultsStore
 from bild_mdo.verification.turbine_sweep import (TurbineSweepSpec, optimize_turbine_case, optimize_turbine_cases,
                                                  turbine_bild_batch)
+from bild_mdo.verification.store_file import check_store_path
 
 #: What the table's rows mean in a turbine sweep (:mod:`bild_mdo.verification.turbine_sweep`).
 TURBINE_TABLE_NOTE = ("Turbine sweep: C_T = T/(rho A V^2/2), C_Q = Q/(rho A V^2 R/2), C_P = P/(rho A V^3/2), "
                       "eta = P/(V T), energy E = V T - P (both methods minimise it at the thrust: the most power); "
                       "FM is not defined.")
-from bild_mdo.verification.store_file import check_store_path
 
 #: What each optimiser beyond SciPy's SLSQP needs, and how to get it.
 INSTALL_HINTS = {
@@ -188,7 +188,7 @@ def run_verify(args, out=None, bild_batch_fn=bild_batch, optimize_fn=optimize_ca
     print(sweep_summary(spec, db_path, run), file=out)
     if turbine:
         print(TURBINE_TABLE_NOTE, file=out)
-    print(format_table3(table), file=out)
+    print(format_table3(table, paper=not turbine), file=out)
     if optimality_error is not None:
         print(f"Optimum is an optimum: not checked, the BEM trim of the BILD designs failed: {optimality_error}",
               file=out)

@@ -14,7 +14,9 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.analyze import station_radii
+from bild_mdo.bem.flow_states import ON_INVALID
 from bild_mdo.bem.inclined_bem_group import InclinedBEMGroup
+from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.metrics import TURBINE_OUTPUTS
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.utils.options import declare_size_options
@@ -151,8 +153,9 @@ class PitchTrimGroup(om.Group):
         declare_size_options(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
-        self.options.declare("loss_model", default="tip_hub", desc="Prandtl losses")
-        self.options.declare("on_invalid", default="warn", desc="BEM stations in an invalid flow state")
+        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS, desc="Prandtl losses")
+        self.options.declare("on_invalid", default="warn", values=ON_INVALID,
+                             desc="BEM stations in an invalid flow state")
         self.options.declare("pitch_bounds", default=PITCH_BOUNDS, desc="(lower, upper) of the pitch (rad)")
 
     def setup(self):

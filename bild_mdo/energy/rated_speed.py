@@ -4,7 +4,9 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bem.flow_states import ON_INVALID
 from bild_mdo.bem.inclined_bem_group import InclinedBEMGroup
+from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.metrics import TURBINE_OUTPUTS
 from bild_mdo.energy.pitch_trim import BEM_INPUTS, NEWTON_ATOL, ExplainedNewton
 from bild_mdo.energy.rated_wind_speed import RatedWindSpeedComp
@@ -49,8 +51,9 @@ class RatedSpeedGroup(om.Group):
         declare_size_options(self.options)
         self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
         self.options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
-        self.options.declare("loss_model", default="tip_hub", desc="Prandtl losses")
-        self.options.declare("on_invalid", default="warn", desc="BEM stations in an invalid flow state")
+        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS, desc="Prandtl losses")
+        self.options.declare("on_invalid", default="warn", values=ON_INVALID,
+                             desc="BEM stations in an invalid flow state")
 
     def setup(self):
         opts = self.options
@@ -79,6 +82,11 @@ class RatedSpeedGroup(om.Group):
             # OpenMDAO forces under complex step carries the exact derivative in the imaginary part (a fresh
             # guess would leave it at the accuracy of the first iterate).
             return
+        rated = np.real(inputs["rated.rated_power"])
+        if not np.all(np.isfinite(rated) & (rated > 0.0)):
+            i = int(np.flatnonzero(~(np.isfinite(rated) & (rated > 0.0)))[0])
+            raise om.AnalysisError(f"{self.msginfo}: rated_power must be positive and finite, got "
+                                   f"{float(rated[i]):g} W (rotor {i})")
         area = np.pi * np.real(inputs["bem.stations.radius"]) ** 2
         gain = 0.5 * np.real(inputs["bem.inflow.rho"]) * area * GUESS_POWER_COEFFICIENT
-        outputs["rated_wind_speed"] = (np.real(inputs["rated.rated_power"]) / gain) ** (1.0 / 3.0)
+        outputs["rated_wind_speed"] = (rated / gain) ** (1.0 / 3.0)

@@ -50,15 +50,21 @@ def declare_wind_speed_option(options):
 def check_rated_inside(v_in, v_rated, v_out, where):
     """om.AnalysisError unless ``cut_in < rated < cut_out`` at every rotor (real parts)."""
     v_in, v_rated, v_out = (np.real(np.asarray(v)) for v in (v_in, v_rated, v_out))
+    limits = ~(v_in < v_out)
+    if np.any(limits):
+        i = int(np.flatnonzero(limits)[0])
+        raise om.AnalysisError(f"{where}: the cut-in speed {v_in[i]:.6g} m/s must be below the cut-out speed "
+                               f"{v_out[i]:.6g} m/s (rotor {i})")
     bad = ~((v_in < v_rated) & (v_rated < v_out))
     if np.any(bad):
         i = int(np.flatnonzero(bad)[0])
-        side = ("is not reached below the cut-out speed" if not v_rated[i] < v_out[i]
-                else "is reached below the cut-in speed")
+        above = not v_rated[i] < v_out[i]
+        side, fix = (("is not reached below the cut-out speed", "lower the rated power or enlarge the rotor") if above
+                     else ("is reached below the cut-in speed", "raise the rated power or shrink the rotor"))
         raise om.AnalysisError(
             f"{where}: at its design tip-speed ratio with zero pitch the rotor's BEM power reaches the rated power "
             f"at {v_rated[i]:.6g} m/s, which {side} (cut-in {v_in[i]:.6g} m/s, cut-out {v_out[i]:.6g} m/s; "
-            f"rotor {i}); raise or lower the rated power or the radius")
+            f"rotor {i}): {fix}")
 
 
 class WindSpeedsComp(om.ExplicitComponent):

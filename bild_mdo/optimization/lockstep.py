@@ -258,7 +258,8 @@ class CaseRun:
             if abs(found.thrust_residual) <= THRUST_TOLERANCE:
                 return x_chord, x_twist, found
             slope = float(np.sum(found.grad_thrust[x_chord.size:]))
-            if not slope * self.settings.get("pitch_slope_sign", 1.0) > 0.0:  # thrust against the pitch: a stalled start
+            # A turbine's thrust falls with pitch (pitch_slope_sign -1); against that, the start is stalled.
+            if not slope * self.settings.get("pitch_slope_sign", 1.0) > 0.0:
                 return None
             x_twist = np.clip(x_twist - found.thrust_residual / slope, lower, upper)
         return None

@@ -279,7 +279,7 @@ def optimize_rotor(v_axial, rpm, radius, hub_radius, thrust_target, altitude=0.0
 
 def _signed(meta, result, case):
     """A turbine's result with the turbine's metrics as its ``performance`` (:func:`turbine_metrics`)."""
-    if meta.get("rotor_type") == "turbine" and all(np.isfinite(list(result.performance.values()))):
+    if meta.get("rotor_type") == "turbine":  # NaN metrics of a failed run stay NaN, turbine-signed
         v_axial, rpm, radius, _, _, altitude = (float(value) for value in case)
         result.performance = turbine_metrics(result.performance, v_axial, rpm, radius, altitude)
     return result

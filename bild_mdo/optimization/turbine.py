@@ -62,7 +62,10 @@ def turbine_twist_bounds(v_axial, rpm, radius, hub_radius, fractions):
 def _induction(thrust, v_axial, radius, hub_radius, rho):
     """Actuator-disc axial induction of thrust ``T`` on the annulus (the windmill branch, ``a <= 1/2``)."""
     loading = thrust / (0.5 * rho * np.pi * (radius**2 - hub_radius**2) * v_axial**2)
-    return 0.5 * (1.0 - np.sqrt(max(1.0 - loading, 0.0)))
+    if not loading <= 1.0:
+        raise ValueError(f"thrust_target {thrust:g} N is above the actuator disc's largest windmill thrust "
+                         f"({thrust / loading:g} N, C_T = 1 on the annulus outside the hub): give a smaller thrust")
+    return 0.5 * (1.0 - np.sqrt(1.0 - loading))
 
 
 def ideal_turbine_energy_loss(thrust, v_axial, radius, hub_radius, rho):

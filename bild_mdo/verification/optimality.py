@@ -36,7 +36,7 @@ import math
 import numpy as np
 
 from .cases import bild_setting
-from .pitch_trim import CASE_KEYS as _CASE_KEYS, LOSS_MODEL, MODEL_KEYS as _MODEL_KEYS, trim_batch  # noqa: F401
+from .thrust_trim import CASE_KEYS, MODEL_KEYS, trim_batch
 
 #: Default relative tolerance of the optimality check (0.01 %, the acceptance criterion).
 DEFAULT_TOLERANCE = 1.0e-4
@@ -90,7 +90,7 @@ def _row_text(row):
 
 def _check_rows(rows):
     for row in rows:
-        missing = [k for k in ("bild_chord", "bild_twist", "bild_thrust_coefficient") + _CASE_KEYS + _MODEL_KEYS
+        missing = [k for k in ("bild_chord", "bild_twist", "bild_thrust_coefficient") + CASE_KEYS + MODEL_KEYS
                    if row.get(k) is None]
         if missing:
             raise ValueError(f"{_row_text(row)}: the BILD trim needs {missing}; pass only cases whose BILD "
@@ -167,7 +167,7 @@ def trimmed_bild_energy_loss(rows, tol=1.0e-10, max_iter=30, first_step=1.0e-3, 
     out["invalid_stations"], converged = np.zeros(size, dtype=int), np.zeros(size, dtype=bool)
     twist, iterations, groups = {}, 0, {}
     for index, row in enumerate(rows):
-        groups.setdefault(tuple(row[k] for k in _MODEL_KEYS), []).append(index)
+        groups.setdefault(tuple(row[k] for k in MODEL_KEYS), []).append(index)
     for indices in groups.values():
         batch = trim_batch([rows[i] for i in indices], tol, max_iter, first_step, max_step, rotor_type)
         for name in out:

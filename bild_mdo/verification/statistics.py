@@ -280,12 +280,14 @@ def _fmt_number(value, digits=3):
     return f"{value:.{digits}f}"
 
 
-def format_table3(table):
+def format_table3(table, paper=True):
     """Format a :class:`Table3` as text, the paper's values beside ours.
 
     Parameters
     ----------
     table : Table3
+    paper : bool
+        Print the paper's columns (its propeller sweep); False for another sweep (the turbines').
 
     Returns
     -------
@@ -325,4 +327,8 @@ def format_table3(table):
     )
     footer = [] if table.start_spread is None else [format_start_spread(table.start_spread)]
     footer += [] if table.optimality is None else [table.optimality.summary()]
+    if not paper:
+        header, lines = header[:5], [line[:5] for line in lines]
+        widths = widths[:5]
+        rule = "-" * len(render(header))
     return "\n".join([title, rule, render(header), rule] + [render(line) for line in lines] + [rule] + footer)

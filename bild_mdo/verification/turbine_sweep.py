@@ -23,11 +23,12 @@ column is empty: a turbine case is set by its thrust, which BILD's
 
 Defaults: wind 8 m/s, B = 3, NACA 4412, 30 stations, hub at 0.1 R, reference
 station at 0.7 R, lambda 4 ... 10, R 2 ... 8 m (so that the reference
-sections' Reynolds numbers, 6e4 ... 1.9e6, stay inside the built-in table; below
+sections' Reynolds numbers, 6e4 ... 1.9e6, stay inside the built-in table, which
+other stations leave a little, up to about 2.03e6 at the largest rotors; below
 R = 2 m the reference station's best lift-to-drag point jumps between two
 branches across the Reynolds numbers of the candidate chords, and at lambda 10,
 R 1 m no reference chord runs at its own section point), altitude
-0 ... 3000 m, C_T 0.4 ... 0.75 (below the maximum-power member's, 0.78 ... 0.83
+0 ... 3000 m, C_T 0.4 ... 0.75 (below the maximum-power member's, 0.77 ... 0.82
 over the sweep: every case is a member that trades power for a lower thrust).
 """
 from __future__ import annotations

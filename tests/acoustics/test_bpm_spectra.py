@@ -126,11 +126,12 @@ def test_report_spectra_within_1_db(figure, curve):
 
 @pytest.mark.parametrize("figure", list(PRINTED_SPEED_MISSES))
 def test_report_spectra_at_55_5_and_39_6_m_per_s(figure):
-    """Panels (b) and (c): not within 1 dB at the printed speed, within 1 dB at U = M c_0 with the Mach number
-    their curves fit, 0.17 or 0.12 (the evidence is in the module docstring)."""
-    chord, speed, alpha, tripped, curves, measured = PRINTED_SPEED_MISSES[figure]
-    at_printed = largest_error(figure, curves, chord, speed, alpha, tripped)
-    assert 1.0 < at_printed < measured + 0.1
+    """Panels (b) and (c): not within 1 dB at the printed speed (the point of issue 26 this leaves open), and
+    within 1 dB at U = M c_0 with the Mach numbers 0.17 and 0.12.  Those two numbers are a FIT (one per printed
+    speed, jointly over all twelve panels and their mechanisms: the module docstring gives the evidence), so the
+    second assertion is a fit residual (the shapes of the spectra agree), not an independent check."""
+    chord, speed, alpha, tripped, curves, _ = PRINTED_SPEED_MISSES[figure]
+    assert largest_error(figure, curves, chord, speed, alpha, tripped) > 1.0
     assert largest_error(figure, curves, chord, CURVE_MACH[speed] * C0, alpha, tripped) < 1.0
 
 

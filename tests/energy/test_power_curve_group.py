@@ -79,7 +79,8 @@ def test_pitch_is_zero_to_rated_and_pitches_to_feather_above(solved):
 def test_thrust_peaks_at_rated_and_falls_as_the_blade_pitches(solved):
     n2, _ = region_sizes(NW)
     thrust = solved.get_val("thrust")
-    # A physical expectation (checked for these rotors): thrust grows as V**2 to rated, then falls with feathering.
+    # The shape of a pitch-to-feather rotor's thrust curve: it grows to rated and falls above as the pitch lowers
+    # the angle of attack at constant power (the NREL 5-MW rotor's, Jonkman et al. 2009, NREL/TP-500-38060, Fig. 7-1).
     assert np.all(np.argmax(thrust, axis=1) == n2 - 1)
     assert np.all(np.diff(thrust[:, n2 - 1:], axis=1) < 0.0)
 
