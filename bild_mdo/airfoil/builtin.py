@@ -16,7 +16,7 @@ from bild_mdo.airfoil.sources.coordinates import parse_airfoil, read_coordinates
 from bild_mdo.airfoil.sources.readers import load_builtin_polars, read_polar_files
 from bild_mdo.airfoil.spanwise import SpanwisePolar
 from bild_mdo.airfoil.surrogate import TabulatedPolar
-from bild_mdo.airfoil.thickness import thickness_from_header
+from bild_mdo.airfoil.thickness import coordinates_thickness_ratio, thickness_from_header
 
 
 #: The lowest Reynolds number of the paper's NACA 4412 tables (Appendix 7.2): the built-in surrogate is split
@@ -137,7 +137,13 @@ def _generated(spec, tool):
     else:
         make = xfoil_polars
     try:
-        return _memo((tool, identity), lambda: tabulated_polar(make(spec), name=label))
+        polar = _memo((tool, identity), lambda: tabulated_polar(make(spec), name=label))
+        if kind != "naca" and vars(polar).get("_thickness_ratio") is None:
+            try:  # the shape's thickness; a shape it cannot be read from stays without one (the noise layer warns)
+                polar.thickness_ratio = coordinates_thickness_ratio(read_coordinates(value)[1], str(value))
+            except ValueError:
+                pass
+        return polar
     except (RuntimeError, ImportError) as exc:
         raise ValueError(f"airfoil {spec!r}: {' '.join(str(exc).split())}") from None
 

@@ -8,6 +8,8 @@ thickness over its chord.  Where it comes from, first match wins
   in a geometry or polar file (:mod:`bild_mdo.airfoil.serialize`), or a comment line
   ``# thickness_ratio = 0.15`` in a polar table file (:func:`thickness_from_header`);
 * a polar built on another (compressibility correction, frozen Reynolds number): its base's;
+* a polar generated from a Selig coordinates file (XFOIL, NeuralFoil): the shape's largest thickness
+  normal to its chord (:func:`coordinates_thickness_ratio`);
 * a NACA 4- or 5-digit designation in the polar's name: its last two digits (``naca4412`` -> 0.12,
   ``'NACA 0012'`` -> 0.12, ``naca23015`` -> 0.15), so the built-in NACA 4412 and XFOIL polars of NACA
   designations carry it;
@@ -24,8 +26,8 @@ import warnings
 
 import numpy as np
 
-__all__ = ["DEFAULT_THICKNESS_RATIO", "ThicknessWarning", "checked_thickness_ratio", "naca_thickness_ratio",
-           "section_thickness_ratio", "thickness_from_header"]
+__all__ = ["DEFAULT_THICKNESS_RATIO", "ThicknessWarning", "checked_thickness_ratio", "coordinates_thickness_ratio",
+           "naca_thickness_ratio", "section_thickness_ratio", "thickness_from_header"]
 
 #: Thickness ratio assumed (with a warning) for an airfoil that does not give one.
 DEFAULT_THICKNESS_RATIO = 0.12
@@ -56,6 +58,27 @@ def naca_thickness_ratio(name):
         return None
     ratio = int(match.group(1)[-2:]) / 100.0
     return ratio if ratio > 0.0 else None
+
+
+def coordinates_thickness_ratio(xy, where="coordinates"):
+    """Largest thickness over chord of a Selig shape ``xy[n, 2]`` (trailing edge, upper surface, leading edge,
+    lower surface): both surfaces interpolated in ``x`` on 2001 cosine-spaced points between the leading edge
+    (the point of least ``x``) and the trailing edge, the thickness normal to the chord (``x`` axis).  For a
+    NACA 4-digit section that is its last two digits (its half-thickness distribution peaks at 30 % chord).
+    ``ValueError`` (naming ``where``) for a shape whose surfaces cross or are not single-valued in ``x``."""
+    xy = np.asarray(xy, dtype=float)
+    lead = int(np.argmin(xy[:, 0]))
+    upper, lower = xy[:lead + 1][::-1], xy[lead:]
+    x0, chord = xy[lead, 0], float(np.max(xy[:, 0]) - xy[lead, 0])
+    if not (chord > 0.0 and np.all(np.diff(upper[:, 0]) > 0.0) and np.all(np.diff(lower[:, 0]) > 0.0)):
+        raise ValueError(f"{where}: the surfaces must each run once from the leading edge (least x) to the "
+                         "trailing edge to give a thickness ratio")
+    x = x0 + chord * 0.5 * (1.0 - np.cos(np.linspace(0.0, np.pi, 2001)))
+    gap = np.interp(x, upper[:, 0], upper[:, 1]) - np.interp(x, lower[:, 0], lower[:, 1])
+    ratio = float(np.max(gap)) / chord
+    if not 0.0 < ratio < 1.0 or np.min(gap[1:-1]) < 0.0:
+        raise ValueError(f"{where}: the upper surface must lie above the lower one (thickness ratio {ratio:.4g})")
+    return ratio
 
 
 def thickness_from_header(path):

@@ -103,3 +103,46 @@ def test_polar_table_header_gives_it(tmp_path):
     bad.write_text("# thickness_ratio = thick\n" + _table())
     with pytest.raises(ValueError, match="thickness_ratio"):
         thickness_from_header(bad)
+
+
+def _naca_4digit(thickness, camber=0.0, position=0.4, points=81):
+    """Selig coordinates of a NACA 4-digit section (Abbott & von Doenhoff, Sec. 6.4), thickness normal to the
+    camber line."""
+    beta = np.linspace(0.0, np.pi, points)
+    x = 0.5 * (1.0 - np.cos(beta))
+    half = 5.0 * thickness * (0.2969 * np.sqrt(x) - 0.126 * x - 0.3516 * x**2 + 0.2843 * x**3 - 0.1015 * x**4)
+    front = x < position
+    yc = np.where(front, camber / position**2 * (2 * position * x - x**2),
+                  camber / (1 - position) ** 2 * (1 - 2 * position + 2 * position * x - x**2))
+    slope = np.arctan(np.where(front, 2 * camber / position**2 * (position - x),
+                               2 * camber / (1 - position) ** 2 * (position - x)))
+    upper = np.column_stack([x - half * np.sin(slope), yc + half * np.cos(slope)])
+    lower = np.column_stack([x + half * np.sin(slope), yc - half * np.cos(slope)])
+    return np.vstack([upper[::-1], lower[1:]])
+
+
+@pytest.mark.parametrize("thickness, camber", [(0.12, 0.0), (0.15, 0.0), (0.12, 0.04)])
+def test_thickness_of_a_coordinates_file(thickness, camber):
+    # The NACA 4-digit half-thickness polynomial peaks at x = 0.3 with 5 t (0.2969 sqrt(0.3) - ...) = 0.50015 t
+    # (a hand evaluation), so the section is t thick there, to 3e-4 t; with 4 % camber the thickness normal to
+    # the chord differs from the one normal to the camber line by less than 0.2 % of t.
+    from bild_mdo.airfoil.thickness import coordinates_thickness_ratio
+    assert coordinates_thickness_ratio(_naca_4digit(thickness, camber)) == pytest.approx(thickness, rel=2e-3)
+
+
+def test_coordinates_file_polar_carries_its_thickness(tmp_path, monkeypatch):
+    from bild_mdo.airfoil import builtin
+    from bild_mdo.airfoil.sources.readers import load_builtin_polars
+    path = tmp_path / "thick_section.dat"
+    path.write_text("THICK SECTION\n" + "".join(f"{a:.6f} {b:.6f}\n" for a, b in _naca_4digit(0.18)))
+    monkeypatch.setattr(builtin, "xfoil_polars",
+                        lambda spec: [p for p in load_builtin_polars("naca4412") if p.reynolds in (5e5, 1e6)])
+    assert resolve_polar(path).thickness_ratio == pytest.approx(0.18, rel=2e-3)
+
+
+def test_crossing_surfaces_are_refused():
+    from bild_mdo.airfoil.thickness import coordinates_thickness_ratio
+    xy = _naca_4digit(0.12)
+    xy[:, 1] *= -1.0  # lower above upper
+    with pytest.raises(ValueError, match="upper surface must lie above the lower one"):
+        coordinates_thickness_ratio(xy, "flipped.dat")
