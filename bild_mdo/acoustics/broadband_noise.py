@@ -4,22 +4,26 @@ Every station of a blade is a BPM segment (NASA RP-1218; :mod:`bild_mdo.acoustic
 span ``dr``, flow speed ``W`` (``inflow_speed``), angle of attack ``alpha`` and chord Reynolds number
 ``R_c = rho W c / mu``, NACA 0012 boundary-layer fits (tripped or untripped).  The blade is sampled at
 ``num_azimuth`` equally spaced azimuths; at each the segment's observer distance, directivity angles and
-Doppler factor follow from its position and velocity (:mod:`bild_mdo.acoustics.bpm.rotor_geometry`).  Each
+Doppler factor follow from its position and velocity (:mod:`bild_mdo.acoustics.bpm.rotor_geometry`), and the
+directivities carry Brooks and Burley's convective amplification of a source moving through still air,
+``(1 - M_tot cos xi_r)^-4`` with the segment's velocity ``W`` relative to the local air along the inflow
+angle ``phi`` (AIAA 2001-2210, Eqs. 14, 19-20), not BPM's wind-tunnel factors of Eqs. (B1)-(B2).  Each
 source spectrum, analytic in Strouhal number, is evaluated at the source frequency ``f (1 - M_r)`` for
 the observer band of centre ``f``.  The rotor's broadband mean-square pressure is the incoherent average
 over azimuth, summed over stations and times the number of blades::
 
     p2[b] = B / N_psi  sum_psi sum_stations p2_segment(f_b (1 - M_r), r_e, D_h, D_l)
 
-The tip vortex (Eq. 61, a rounded or flat tip) takes the chord, ``W`` and ``alpha`` of the outermost
-station and sits at the tip radius ``R``.  LBL-VS exists only with an untripped boundary layer.
+The tip vortex (Eq. 61, a rounded or flat tip) takes the chord, ``W``, ``phi`` and ``alpha`` of the
+outermost station (``alpha'_TIP = tip_alpha_correction * alpha``, Eq. 65) and sits at the tip radius ``R``.
+LBL-VS exists only with an untripped boundary layer.
 
-Approximations: far field per segment (BPM's point-source directivities at ``r_e``); the emission
-geometry is the reception geometry (no retarded-time integration); the source sits on the blade's
-pitch-change axis (the quarter chord) with BPM's chord axis along the section's chord, pitched
-``theta = phi + alpha`` from the disc plane (:mod:`~bild_mdo.acoustics.bpm.rotor_geometry`); the convective amplification uses the
-segment's Mach number through the air, the source amplitude and Strouhal numbers the flow speed ``W``;
-observers move with the rotor; a Doppler-shifted band keeps its 1/3-octave energy (no band re-binning).
+Approximations: far field per segment (point-source directivities at ``r_e``); the azimuths are averaged
+uniformly in source time (the observer-time weight ``1 - M_r`` of each emission interval is left out); the
+source sits on the blade's pitch-change axis (the quarter chord) with BPM's chord axis along the section's
+chord, pitched ``theta = phi + alpha`` from the disc plane (:mod:`~bild_mdo.acoustics.bpm.rotor_geometry`); the source
+amplitude and Strouhal numbers use the flow speed ``W`` (no Prandtl-Glauert factor); observers move with
+the rotor; a Doppler-shifted band keeps its 1/3-octave energy (no band re-binning).
 
 Partials are exact: the BPM functions are evaluated once more with :class:`~bild_mdo.utils.jet.Jet`
 values seeded at the segment and geometric quantities, and chained to the inputs.
@@ -33,7 +37,7 @@ from bild_mdo.acoustics.bands import THIRD_OCTAVE_CENTRES
 from bild_mdo.acoustics.bpm.jet_math import value
 from bild_mdo.acoustics.bpm.laminar_vortex_shedding import lbl_vs_pressure_squared
 from bild_mdo.acoustics.bpm.rotor_geometry import GEOMETRY_NAMES, segment_geometry
-from bild_mdo.acoustics.bpm.tip_vortex import TIP_SHAPES, tip_vortex_pressure_squared
+from bild_mdo.acoustics.bpm.tip_vortex import TIP_ALPHA_CORRECTION, TIP_SHAPES, tip_vortex_pressure_squared
 from bild_mdo.acoustics.bpm.turbulent_trailing_edge import tbl_te_pressure_squared
 from bild_mdo.utils.jet import Jet
 from bild_mdo.utils.options import add_inputs, declare_size_options
@@ -44,8 +48,8 @@ _TIP = BROADBAND_SOURCES.index("tip_vortex")
 _LBL = BROADBAND_SOURCES.index("lbl_vs")
 _RPM_TO_RAD_S = np.pi / 30.0
 _DIST = ("radii", "dr", "chord", "alpha", "inflow_speed", "phi")
-_NODE = ("rpm", "v_axial", "radius", "rho", "mu", "speed_of_sound")
-_GEOMETRY_SEEDS = ("r", "pitch", "rpm", "v_axial", "speed_of_sound", "ox", "oy", "oz")
+_NODE = ("rpm", "radius", "rho", "mu", "speed_of_sound")
+_GEOMETRY_SEEDS = ("r", "pitch", "w", "inflow_angle", "rpm", "speed_of_sound", "ox", "oy", "oz")
 
 
 def _seed(x, name, jets):
@@ -71,15 +75,18 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         Azimuth samples of the blade around the disc (default 24).
     tip_shape : str
         ``'rounded'`` (default, Eq. 63) or ``'flat'`` (Eq. 67).
+    tip_alpha_correction : float
+        ``alpha'_TIP / alpha_TIP`` of the tip vortex (Eq. 65); default 0.71, BPM's untwisted wing (Eq. 66).
 
     Inputs
     ------
     radii[nn, nr] (m), dr[nn, nr] (m), chord[nn, nr] (m), alpha[nn, nr] (rad), inflow_speed[nn, nr] (m/s)
         Station radius, width, chord, angle of attack and inflow speed ``W``.
     phi[nn, nr] (rad)
-        Inflow angle of each station (with ``alpha`` the pitch ``phi + alpha`` of its chord).
-    rpm[nn] (rpm), v_axial[nn] (m/s), radius[nn] (m)
-        Rotor speed, axial speed and tip radius.
+        Inflow angle of each station: the direction of ``W`` (convective amplification) and, with ``alpha``,
+        the pitch ``phi + alpha`` of its chord.  The flight speed enters through ``W`` and ``phi``.
+    rpm[nn] (rpm), radius[nn] (m)
+        Rotor speed and tip radius.
     rho[nn] (kg/m**3), mu[nn] (Pa*s), speed_of_sound[nn] (m/s)
         The air.
     observer_position[nn, no, 3] (m)
@@ -105,6 +112,8 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                              desc="azimuth samples of the blade around the disc")
         self.options.declare("tip_shape", default="rounded", values=TIP_SHAPES,
                              desc="tip shape of the tip-vortex model: rounded (Eq. 63) or flat (Eq. 67)")
+        self.options.declare("tip_alpha_correction", types=float, default=TIP_ALPHA_CORRECTION, lower=0.0,
+                             desc="alpha'_TIP / alpha_TIP of the tip vortex (Eq. 65; 0.71 is BPM's Eq. 66)")
 
     def _sizes(self):
         o = self.options
@@ -138,7 +147,7 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         seg_tip = seg_all | np.outer(tip, last)
         return {"radii": seg_all, "dr": seg_all, "chord": seg_tip, "alpha": seg_tip, "inflow_speed": seg_tip,
                 "phi": seg_tip,
-                "rpm": segment | tip, "v_axial": segment | tip, "speed_of_sound": segment | tip,
+                "rpm": segment | tip, "speed_of_sound": segment | tip,
                 "rho": segment, "mu": segment, "radius": tip, "observer_position": segment | tip}
 
     def _patterns(self):
@@ -189,7 +198,6 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         obs = [_seed(pos[:, :, k][:, :, None, None, None], n, jets) for k, n in enumerate(("ox", "oy", "oz"))]
         omega = per_node["rpm"] * _RPM_TO_RAD_S
         omega = Jet(omega, {"rpm": _RPM_TO_RAD_S}) if jets else omega
-        v_axial = _seed(per_node["v_axial"], "v_axial", jets)
         c0 = per_node["speed_of_sound"]
         c0_geo = _seed(c0, "speed_of_sound", jets)
 
@@ -207,7 +215,9 @@ class BroadbandNoiseComp(om.ExplicitComponent):
 
         seg_values, seg = segment(slice(None))
         pitch = inputs["phi"] + inputs["alpha"]
-        geo = segment_geometry(_seed(station(inputs["radii"]), "r", jets), omega, v_axial, c0_geo, obs, azimuth,
+        geo = segment_geometry(_seed(station(inputs["radii"]), "r", jets), omega,
+                               _seed(station(inputs["inflow_speed"]), "w", jets),
+                               _seed(station(inputs["phi"]), "inflow_angle", jets), c0_geo, obs, azimuth,
                                _seed(station(pitch), "pitch", jets))
         g = {k: _seed(value(v), k, jets) for k, v in geo.items()}
         f_src = freq * g["shift"]
@@ -218,12 +228,15 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                                                             seg["mach"], seg["alpha"], seg["reynolds"],
                                                             g["distance"], g["d_high"])
         tip_values, tip = segment(nr - 1)
-        geo_tip = segment_geometry(_seed(per_node["radius"], "r", jets), omega, v_axial, c0_geo, obs, azimuth,
-                                   _seed(station(pitch, nr - 1), "pitch", jets))
+        geo_tip = segment_geometry(_seed(per_node["radius"], "r", jets), omega,
+                                   _seed(station(inputs["inflow_speed"], nr - 1), "w", jets),
+                                   _seed(station(inputs["phi"], nr - 1), "inflow_angle", jets), c0_geo, obs,
+                                   azimuth, _seed(station(pitch, nr - 1), "pitch", jets))
         gt = {k: _seed(value(v), k, jets) for k, v in geo_tip.items()}
         c0_tip = _seed(c0, "c0_tip", jets)
         p2_t = tip_vortex_pressure_squared(freq * gt["shift"], tip["chord"], tip["mach"], c0_tip, tip["alpha"],
-                                           gt["distance"], gt["d_high"], tip_shape=o["tip_shape"])
+                                           gt["distance"], gt["d_high"], tip_shape=o["tip_shape"],
+                                           alpha_correction=o["tip_alpha_correction"])
         return ([p2_p, p2_s, p2_a, p2_l, p2_t], (seg_values, geo), (tip_values, geo_tip))
 
     def compute(self, inputs, outputs):
@@ -284,11 +297,16 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                 dg = geometry[g].partial(seed)
                 if not (np.isscalar(dg) and dg == 0.0):
                     geo_d[seed] = geo_d[seed] + scale * np.sum(np.real(dp * dg), axis=3)
+
+        def per_station(x):
+            return np.broadcast_to(x, shape[:3] + shape[4:])
+
         # M = W / c0: dM/dW = M / W, dM/dc0 = -M^2 / W.
-        # The chord's pitch is phi + alpha.
-        d_pitch = np.broadcast_to(geo_d["pitch"], shape[:3] + shape[4:])
-        out = {"chord": total("chord"), "alpha": total("alpha") + d_pitch, "phi": d_pitch,
-               "inflow_speed": total("speed") + total("mach", mach / speed)}
+        # The chord's pitch is phi + alpha; W and phi also set the convection velocity of the directivities.
+        d_pitch = per_station(geo_d["pitch"])
+        out = {"chord": total("chord"), "alpha": total("alpha") + d_pitch,
+               "phi": d_pitch + per_station(geo_d["inflow_angle"]),
+               "inflow_speed": total("speed") + total("mach", mach / speed) + per_station(geo_d["w"])}
         d_c0 = over_stations(total("mach", -mach * mach / speed))
         if is_tip:
             d_c0 = d_c0 + over_stations(total("c0_tip"))
@@ -299,11 +317,10 @@ class BroadbandNoiseComp(om.ExplicitComponent):
             out["chord"] = out["chord"] + total("reynolds", re / values["chord"])
             out["inflow_speed"] = out["inflow_speed"] + total("reynolds", re / speed)
             out["dr"] = total("span")
-            out["radii"] = np.broadcast_to(geo_d["r"], shape[:3] + shape[4:])
+            out["radii"] = per_station(geo_d["r"])
             out["rho"] = over_stations(total("reynolds", re / values["rho"]))
             out["mu"] = over_stations(total("reynolds", -re / values["mu"]))
         out["speed_of_sound"] = d_c0 + over_stations(geo_d["speed_of_sound"])
         out["rpm"] = over_stations(geo_d["rpm"])
-        out["v_axial"] = over_stations(geo_d["v_axial"])
         out["observer_position"] = np.stack([over_stations(geo_d[k]) for k in ("ox", "oy", "oz")], axis=-1)
         return out

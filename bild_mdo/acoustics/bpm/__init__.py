@@ -7,7 +7,8 @@ separation, LBL-VS, tip vortex, and :func:`segment_spectra` that combines them f
 from bild_mdo.acoustics.bpm.boundary_layer import (BoundaryLayer, boundary_layer, pressure_side_ratios,
                                                    suction_side_ratios, zero_angle_thickness)
 from bild_mdo.acoustics.bpm.directivity import (high_frequency_directivity, high_frequency_directivity_from_cosines,
-                                                low_frequency_directivity, low_frequency_directivity_from_cosines)
+                                                low_frequency_directivity, low_frequency_directivity_from_cosines,
+                                                moving_source_directivities)
 from bild_mdo.acoustics.bpm.laminar_vortex_shedding import (lbl_vs_pressure_squared, peak_strouhal,
                                                             reference_reynolds, reference_strouhal, shape_g1,
                                                             shape_g2, shape_g3)
@@ -22,8 +23,9 @@ from bild_mdo.acoustics.bpm.turbulent_trailing_edge import (amplitude_delta_k1, 
 
 __all__ = ["BoundaryLayer", "boundary_layer", "pressure_side_ratios", "suction_side_ratios", "zero_angle_thickness",
            "high_frequency_directivity", "high_frequency_directivity_from_cosines", "low_frequency_directivity",
-           "low_frequency_directivity_from_cosines", "lbl_vs_pressure_squared", "peak_strouhal", "reference_reynolds",
-           "reference_strouhal", "shape_g1", "shape_g2", "shape_g3", "SEGMENT_SOURCES", "segment_spectra",
+           "low_frequency_directivity_from_cosines", "moving_source_directivities", "lbl_vs_pressure_squared",
+           "peak_strouhal", "reference_reynolds", "reference_strouhal", "shape_g1", "shape_g2", "shape_g3",
+           "SEGMENT_SOURCES", "segment_spectra",
            "TIP_ALPHA_CORRECTION", "TIP_SHAPES", "tip_extent_ratio", "tip_vortex_pressure_squared",
            "amplitude_delta_k1", "amplitude_k1", "amplitude_k2", "amplitude_k2_minus_k1", "peak_strouhal_1",
            "peak_strouhal_2", "shape_a_max", "shape_a_min", "shape_b_max", "shape_b_min", "spectral_shape_a",

@@ -15,25 +15,28 @@ With ``d = X_obs - p`` and its components ``d_x, d_y, d_z`` in that frame::
     r_e = |d|,  cos Theta_e = d_x / r_e,  sin^2 Phi_e = d_z^2 / (d_y^2 + d_z^2),
     sin^2 Theta_e sin^2 Phi_e = d_z^2 / r_e^2,
 
-the directivities use the segment's Mach number through the air ``M_d = |V| / c_0`` (convective
-amplification), and the Doppler factor of the source frequency is ``f_source / f_observer = 1 - M_r``,
-``M_r = V_rot . d / (c_0 r_e)`` with ``V_rot`` the rotational part of ``V`` (the observer moves with the
-hub, so only the rotation moves the source relative to the observer).  All quantities are evaluated at
-the emission geometry taken equal to the reception geometry (far field, no retarded-time correction).
+the directivities are Brooks and Burley's for a source moving through still air (AIAA 2001-2210, Eqs.
+19-20; :func:`~bild_mdo.acoustics.bpm.directivity.moving_source_directivities`) with the segment's
+velocity relative to the local air ``V_tot = W (cos phi e_theta + sin phi e_x)`` (their Eq. 14: rotation,
+flight and induced velocity; ``W`` the inflow speed and ``phi`` the inflow angle of the blade-element
+analysis), ``M_tot cos xi_r = V_tot . d / (c_0 r_e)``, and the Doppler factor of the source frequency is
+``f_source / f_observer = 1 - M_r``, ``M_r = V_rot . d / (c_0 r_e)`` with ``V_rot`` the rotational part of
+the segment's velocity (the observer moves with the hub, so only the rotation moves the source relative to
+the observer).  All quantities are evaluated at the emission geometry (the source's position at the
+emission time; the observer is at rest relative to the hub).
 """
 from __future__ import annotations
 
 import numpy as np
 
-from bild_mdo.acoustics.bpm.directivity import (high_frequency_directivity_from_cosines,
-                                                low_frequency_directivity_from_cosines)
+from bild_mdo.acoustics.bpm.directivity import moving_source_directivities
 from bild_mdo.acoustics.bpm.jet_math import cos, sin, sqrt
 
 #: Names of the geometric quantities :func:`segment_geometry` returns.
 GEOMETRY_NAMES = ("distance", "d_high", "d_low", "shift")
 
 
-def segment_geometry(radius, omega, v_axial, speed_of_sound, observer, azimuth, pitch):
+def segment_geometry(radius, omega, inflow_speed, inflow_angle, speed_of_sound, observer, azimuth, pitch):
     """Observer distance, ``D_h``, ``D_l`` and the Doppler factor ``1 - M_r`` of rotating segments.
 
     Parameters
@@ -42,8 +45,10 @@ def segment_geometry(radius, omega, v_axial, speed_of_sound, observer, azimuth, 
         Segment radius ``r`` (m).
     omega : array or Jet
         Rotor speed ``Omega`` (rad/s).
-    v_axial : array or Jet
-        Axial speed of the rotor through the air (m/s).
+    inflow_speed : array or Jet
+        Speed ``W`` of the segment relative to the local air (m/s).
+    inflow_angle : array or Jet
+        Inflow angle ``phi`` of that velocity from the disc plane (rad).
     speed_of_sound : array or Jet
         ``c_0`` (m/s).
     observer : tuple of (array or Jet)
@@ -60,7 +65,6 @@ def segment_geometry(radius, omega, v_axial, speed_of_sound, observer, azimuth, 
     """
     cos_psi, sin_psi = np.cos(azimuth), np.sin(azimuth)
     tangential = omega * radius
-    speed = sqrt(v_axial * v_axial + tangential * tangential)
     ox, oy, oz = observer
     dx, dy, dz = ox, oy - radius * cos_psi, oz - radius * sin_psi
     # Components of d along the span (y_e) and the chord (x_e, towards the trailing edge).
@@ -75,10 +79,13 @@ def segment_geometry(radius, omega, v_axial, speed_of_sound, observer, azimuth, 
     cos_theta = d_flow / distance
     dn2 = d_normal * d_normal
     sin2_phi = dn2 / (d_span * d_span + dn2)
-    mach = speed / speed_of_sound
+    # V_tot . d: the segment moves along e_theta and, relative to the air, along +e_x at W sin phi.
+    approach = inflow_speed * (cos(inflow_angle) * d_tangential + sin(inflow_angle) * dx)
+    d_high, d_low = moving_source_directivities(cos_theta, sin2_phi, dn2 / distance2,
+                                                approach / (speed_of_sound * distance))
     return {
         "distance": distance,
-        "d_high": high_frequency_directivity_from_cosines(cos_theta, sin2_phi, mach),
-        "d_low": low_frequency_directivity_from_cosines(dn2 / distance2, cos_theta, mach),
+        "d_high": d_high,
+        "d_low": d_low,
         "shift": 1.0 - tangential * d_tangential / (speed_of_sound * distance),
     }
