@@ -120,6 +120,15 @@ class ExplainedNewton(om.NewtonSolver):
         super().report_failure(f"{msg} {self.hint}")
 
 
+def declare_turbine_bem_options(options):
+    """The options of a turbine BEM inside the power curve: ``num_blades``, ``polar`` (the airfoil's own),
+    ``loss_model``, ``on_invalid``."""
+    options.declare("num_blades", types=int, default=3, desc="number of blades B")
+    options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
+    options.declare("loss_model", default="tip_hub", values=LOSS_MODELS, desc="Prandtl losses")
+    options.declare("on_invalid", default="warn", values=ON_INVALID, desc="BEM stations in an invalid flow state")
+
+
 class PitchTrimGroup(om.Group):
     """Turbine BEM at K operating points with the collective pitch solved so that the power equals ``rated_power``.
 
@@ -151,11 +160,7 @@ class PitchTrimGroup(om.Group):
 
     def initialize(self):
         declare_size_options(self.options)
-        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
-        self.options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
-        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS, desc="Prandtl losses")
-        self.options.declare("on_invalid", default="warn", values=ON_INVALID,
-                             desc="BEM stations in an invalid flow state")
+        declare_turbine_bem_options(self.options)
         self.options.declare("pitch_bounds", default=PITCH_BOUNDS, desc="(lower, upper) of the pitch (rad)")
 
     def setup(self):

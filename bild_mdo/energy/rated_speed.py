@@ -4,11 +4,9 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bem.flow_states import ON_INVALID
 from bild_mdo.bem.inclined_bem_group import InclinedBEMGroup
-from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.metrics import TURBINE_OUTPUTS
-from bild_mdo.energy.pitch_trim import BEM_INPUTS, NEWTON_ATOL, ExplainedNewton
+from bild_mdo.energy.pitch_trim import BEM_INPUTS, NEWTON_ATOL, ExplainedNewton, declare_turbine_bem_options
 from bild_mdo.energy.rated_wind_speed import RatedWindSpeedComp
 from bild_mdo.energy.rotor_speed import RotorSpeedComp
 from bild_mdo.utils.options import declare_size_options
@@ -49,11 +47,7 @@ class RatedSpeedGroup(om.Group):
 
     def initialize(self):
         declare_size_options(self.options)
-        self.options.declare("num_blades", types=int, default=3, desc="number of blades B")
-        self.options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
-        self.options.declare("loss_model", default="tip_hub", values=LOSS_MODELS, desc="Prandtl losses")
-        self.options.declare("on_invalid", default="warn", values=ON_INVALID,
-                             desc="BEM stations in an invalid flow state")
+        declare_turbine_bem_options(self.options)
 
     def setup(self):
         opts = self.options
