@@ -33,6 +33,7 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo import validation
 from bild_mdo.acoustics.bands import THIRD_OCTAVE_CENTRES
 from bild_mdo.acoustics.bpm.jet_math import value
 from bild_mdo.acoustics.bpm.laminar_vortex_shedding import lbl_vs_pressure_squared
@@ -47,6 +48,9 @@ BROADBAND_SOURCES = ("tbl_te_pressure", "tbl_te_suction", "separation", "lbl_vs"
 _TIP = BROADBAND_SOURCES.index("tip_vortex")
 _LBL = BROADBAND_SOURCES.index("lbl_vs")
 _RPM_TO_RAD_S = np.pi / 30.0
+#: Peak memory per segment, azimuth and band (bytes) of a run and of the partials, measured (30 stations, 24
+#: azimuths, 31 bands, one observer: about 3.5 MB and 18 MB per design at 81 ... 1,296 designs) and rounded up.
+RUN_BYTES, PARTIALS_BYTES = 200.0, 1000.0
 _DIST = ("radii", "dr", "chord", "alpha", "inflow_speed", "phi")
 _NODE = ("rpm", "radius", "rho", "mu", "speed_of_sound")
 _GEOMETRY_SEEDS = ("r", "pitch", "w", "inflow_angle", "rpm", "speed_of_sound", "ox", "oy", "oz")
@@ -120,8 +124,17 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         return (o["num_nodes"], o["num_radial"], o["num_observers"], len(BROADBAND_SOURCES),
                 len(np.atleast_1d(o["band_frequencies"])))
 
+    def _check_memory(self, bytes_per_value, what):
+        """ValueError (one line) before a run whose arrays of every segment, azimuth and band would not fit."""
+        nn, nr, no, _, nb = self._sizes()
+        validation.memory_bound(f"{what} of {nn} designs x {no} observers", nn * no, nr,
+                                bytes_per_value=bytes_per_value * self.options["num_azimuth"] * nb,
+                                hint="compute the noise of fewer designs at a time (a smaller num_nodes), or with "
+                                     "fewer observers, azimuths or bands")
+
     def setup(self):
         nn, nr, no, ns, nb = self._sizes()
+        self._check_memory(RUN_BYTES, "the broadband noise")
         add_inputs(self, [n for n in _DIST + _NODE if n != "alpha"])
         self.add_input("alpha", val=np.full((nn, nr), 0.05), units="rad", desc="angle of attack of each station")
         self.add_input("observer_position", val=np.tile([-10.0, 0.0, 0.0], (nn, no, 1)), units="m",
@@ -251,6 +264,7 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         outputs["broadband_pressure_squared"] = out.sum(axis=2)
 
     def compute_partials(self, inputs, partials):
+        self._check_memory(PARTIALS_BYTES, "the broadband noise's partials")
         nn, nr, no, ns, nb = self._sizes()
         scale = self.options["num_blades"] / self.options["num_azimuth"]
         spectra, (seg, geo), (tip, geo_tip) = self._evaluate(inputs, jets=True)

@@ -178,3 +178,13 @@ def test_moving_source_directivities():
     moving = moving_source_directivities(cos_theta, sin2_phi, sin2_theta_sin2_phi, 0.2)
     np.testing.assert_allclose(moving[0] / d_high, 0.8 ** -4, rtol=1e-14)
     np.testing.assert_allclose(moving[1] / d_low, 0.8 ** -4, rtol=1e-14)
+
+
+def test_a_batch_too_large_for_the_memory_is_refused_before_it_runs():
+    # Half the physical memory is the limit (bild_mdo.validation.memory_bound); 10**6 designs at 30 stations,
+    # 24 azimuths and 31 bands hold 2.2e10 segment-band values, far beyond any machine's memory.
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("b", BroadbandNoiseComp(num_nodes=10**6, num_radial=30, num_observers=1))
+    with pytest.raises(ValueError, match=r"the broadband noise of 1000000 designs x 1 observers .* compute the noise "
+                                         r"of fewer designs at a time"):
+        prob.setup()
