@@ -60,7 +60,7 @@ def ideal_energy_loss(thrust, v_axial, radius, hub_radius, rho):
     return float(thrust * _actuator_disk_induced_velocity(thrust, v_axial, radius, hub_radius, rho))
 
 
-def twist_bounds(v_axial, rpm, radius, hub_radius, fractions):
+def twist_bounds(v_axial, rpm, radius, hub_radius, fractions, margins=TWIST_MARGINS, limits=TWIST_LIMITS):
     """Per-design-value twist bounds around the inflow angle without induction.
 
     Parameters
@@ -70,17 +70,18 @@ def twist_bounds(v_axial, rpm, radius, hub_radius, fractions):
     fractions : array_like
         Normalised span positions of the design values
         (:func:`~bild_mdo.optimization.parameterization.design_value_fractions`).
+    margins, limits : tuple of float
+        ``(lower, upper)`` relative to ``phi_0`` and absolute (rad); a propeller's by default (a turbine's:
+        :mod:`bild_mdo.optimization.turbine`).
 
     Returns
     -------
     lower, upper : ndarray
-        Bounds (rad): ``phi_0 + TWIST_MARGINS`` clipped to ``TWIST_LIMITS``.
+        Bounds (rad): ``phi_0 + margins`` clipped to ``limits``.
     """
     radii = hub_radius + np.asarray(fractions) * (radius - hub_radius)
     phi0 = np.arctan2(v_axial, angular_velocity(rpm) * radii)
-    lower = np.clip(phi0 + TWIST_MARGINS[0], *TWIST_LIMITS)
-    upper = np.clip(phi0 + TWIST_MARGINS[1], *TWIST_LIMITS)
-    return lower, upper
+    return np.clip(phi0 + margins[0], *limits), np.clip(phi0 + margins[1], *limits)
 
 
 def linear_initial_design(v_axial, rpm, radius, hub_radius, thrust_target, rho, num_radial,

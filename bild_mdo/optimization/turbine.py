@@ -39,6 +39,7 @@ import openmdao.api as om
 from bild_mdo.atmosphere import isa
 from bild_mdo.bild.turbine_problem import run_turbine_bild
 from bild_mdo.constants import angular_velocity
+from bild_mdo.optimization.initial_design import twist_bounds
 from bild_mdo.optimization.parameterization import station_fractions
 
 #: Rotor types of the optimisation, and the sign of the thrust target in the model (the kernel's convention).
@@ -53,10 +54,7 @@ _ALPHA_START = np.radians(5.0)
 
 def turbine_twist_bounds(v_axial, rpm, radius, hub_radius, fractions):
     """Per-design-value twist bounds of a turbine (rad): ``phi_0 + TURBINE_TWIST_MARGINS`` within the limits."""
-    radii = hub_radius + np.asarray(fractions) * (radius - hub_radius)
-    phi0 = np.arctan2(v_axial, angular_velocity(rpm) * radii)
-    return (np.clip(phi0 + TURBINE_TWIST_MARGINS[0], *TURBINE_TWIST_LIMITS),
-            np.clip(phi0 + TURBINE_TWIST_MARGINS[1], *TURBINE_TWIST_LIMITS))
+    return twist_bounds(v_axial, rpm, radius, hub_radius, fractions, TURBINE_TWIST_MARGINS, TURBINE_TWIST_LIMITS)
 
 
 def _induction(thrust, v_axial, radius, hub_radius, rho):

@@ -207,13 +207,20 @@ def time_single_bild_design(case, repeats=20):
     return best
 
 
+def _configuration(inputs):
+    """What one optimisation problem serves: stations, blades, airfoil and rotor type (a turbine case says so)."""
+    return (int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"],
+            inputs.get("rotor_type", "propeller"))
+
+
 def _cached_problem(inputs, optimizer, parameterization, tol):
-    key = (optimizer, parameterization, tol, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
+    num_radial, num_blades, airfoil, rotor_type = _configuration(inputs)
+    key = (optimizer, parameterization, tol, num_radial, num_blades, airfoil, rotor_type)
     prob = _PROBLEMS.get(key)
     if prob is None:
         prob = build_optimization_problem(optimizer=optimizer, parameterization=parameterization, tol=tol,
-                                          num_radial=int(inputs["num_radial"]), num_blades=int(inputs["num_blades"]),
-                                          polar=sweep_polar(inputs["airfoil"]))
+                                          num_radial=num_radial, num_blades=num_blades, polar=sweep_polar(airfoil),
+                                          rotor_type=rotor_type)
         _PROBLEMS[key] = prob
     return prob
 
@@ -274,10 +281,12 @@ def optimize_case(case, bild_result, optimizer=None, initial="bild", parameteriz
                             bild_result["thrust"], inputs["altitude"], problem=prob, restarts=restarts, initial=initial,
                             bild_chord=bild_result.get("chord"), bild_twist=bild_result.get("twist"),
                             reference_chord=inputs["reference_chord"])
-    return _row(result)
+    return optimum_row(result)
 
 
-def _row(result):
+def optimum_row(result):
+    """The store's quantities of one optimisation result (:data:`~bild_mdo.bem.metrics.VERIFIED_METRICS`, the
+    geometry, convergence, status, iterations)."""
     row = {name: result.performance[name] for name in VERIFIED_METRICS}
     row.update(chord=result.chord, twist=result.twist, converged=result.converged, status=result.status,
                iterations=result.iterations)
@@ -315,7 +324,7 @@ def optimize_cases(payloads, optimizer=None, initial="bild", parameterization="s
     ImportError
         If the optimiser's package is missing.
     """
-    first = _optimize_start(payloads, optimizer, initial, parameterization, tol, restarts)
+    first = optimize_start(payloads, optimizer, initial, parameterization, tol, restarts)
     runs = [first]
     for number, kind in enumerate(START_KINDS[1:], start=2):
         chosen = [k for k, (case, bild) in enumerate(payloads) if getattr(case, "starts", 1) >= number
@@ -325,7 +334,7 @@ def optimize_cases(payloads, optimizer=None, initial="bild", parameterization="s
             part = [(payloads[k][0], dict(payloads[k][1], chord=payloads[k][1]["other_chord"],
                                           twist=payloads[k][1]["other_twist"]) if kind == "other_bild"
                      else payloads[k][1]) for k in chosen]
-            for k, result in zip(chosen, _optimize_start(part, optimizer, "linear" if kind == "linear" else "bild",
+            for k, result in zip(chosen, optimize_start(part, optimizer, "linear" if kind == "linear" else "bild",
                                                          parameterization, tol, restarts)):
                 run[k] = result
         runs.append(run)
@@ -333,15 +342,14 @@ def optimize_cases(payloads, optimizer=None, initial="bild", parameterization="s
             for k, (case, _bild) in enumerate(payloads)]
 
 
-def _optimize_start(payloads, optimizer, initial, parameterization, tol, restarts):
-    """One start of :func:`optimize_cases` for every case: a lockstep run per configuration."""
+def optimize_start(payloads, optimizer, initial, parameterization="stations", tol=None, restarts=1):
+    """One start (``initial`` 'bild' or 'linear') of every case: a lockstep run per configuration; per case the row
+    of :func:`optimum_row` or the exception it raised (:func:`optimize_cases`, and the turbine sweep's)."""
     out = [None] * len(payloads)
     groups = {}
     for k, (case, _bild) in enumerate(payloads):
-        inputs = case.inputs
         chosen = case.optimizer if optimizer is None else optimizer
-        key = (chosen, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
-        groups.setdefault(key, []).append(k)
+        groups.setdefault((chosen,) + _configuration(case.inputs), []).append(k)
     for (chosen, *_), members in groups.items():
         try:
             prob = _cached_problem(payloads[members[0]][0].inputs, chosen, parameterization, tol)
@@ -358,7 +366,10 @@ def _optimize_start(payloads, optimizer, initial, parameterization, tol, restart
 
 def _optimize_group(prob, payloads, members, out, initial, restarts):
     columns = {key: np.array([case.inputs[key] for case, _ in payloads], dtype=float)
-               for key in ("v_axial", "rpm", "radius", "hub_radius", "altitude", "reference_chord")}
+               for key in ("v_axial", "rpm", "radius", "hub_radius", "altitude")}
+    # A turbine case has no reference chord (its cold start takes Betz-Schmitz's chord).
+    chords = [case.inputs.get("reference_chord") for case, _ in payloads]
+    columns["reference_chord"] = None if any(c is None for c in chords) else np.array(chords, dtype=float)
     thrust = np.array([bild["thrust"] for _, bild in payloads], dtype=float)
     geometry = {}
     if initial == "bild":
@@ -379,4 +390,4 @@ def _optimize_group(prob, payloads, members, out, initial, restarts):
                 out[k] = exc
         return
     for k, result in zip(members, results):
-        out[k] = _row(result)
+        out[k] = optimum_row(result)

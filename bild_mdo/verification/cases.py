@@ -96,6 +96,18 @@ def sweep_estimate(levels):
             f"{_format_cpu_time(cases * OPTIMIZATION_TIME_PER_CASE)} of BEM optimisation")
 
 
+def axis_point(case_id, levels, values, axes):
+    """``{axis: value}`` of case ``case_id`` of a full-factorial sweep over ``axes`` (the first varies slowest),
+    ``values[axis]`` its ``levels`` levels; ValueError outside ``[0, levels**len(axes))``."""
+    count = levels ** len(axes)
+    if not 0 <= case_id < count:
+        raise ValueError(f"case_id must be in [0, {count}), got {case_id}")
+    index, rest = {}, case_id
+    for name in reversed(axes):
+        rest, index[name] = divmod(rest, levels)
+    return {name: float(values[name][index[name]]) for name in axes}
+
+
 @dataclass(frozen=True)
 class Case:
     """One design point of the sweep.
@@ -296,14 +308,7 @@ class SweepSpec:
 
     def _build_case(self, case_id, values):
         case_id = int(case_id)
-        if not 0 <= case_id < self.num_cases:
-            raise ValueError(f"case_id must be in [0, {self.num_cases}), got {case_id}")
-        levels = int(self.levels)
-        index = {}
-        rest = case_id
-        for name in reversed(AXES):
-            rest, index[name] = divmod(rest, levels)
-        point = {name: float(values[name][index[name]]) for name in AXES}
+        point = axis_point(case_id, int(self.levels), values, AXES)
         radius = point["radius"]
         rev_per_second = float(self.rpm) * RPM_TO_REV_PER_S
         inputs = dict(point)

@@ -45,11 +45,11 @@ from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.atmosphere import isa
 from bild_mdo.bild.turbine_problem import run_turbine_bild
 from bild_mdo.constants import RPM_TO_RAD_PER_S
-from bild_mdo.optimization.problem import OPTIMIZERS, build_optimization_problem
-from bild_mdo.optimization.run import optimize_rotors
+from bild_mdo.optimization.problem import OPTIMIZERS
 from bild_mdo.utils.batches import isolate_failures
 
-from .cases import CASE_LAYOUT_VERSION, MAX_LEVELS, Case, CaseSetupError
+from .case_functions import optimize_start
+from .cases import CASE_LAYOUT_VERSION, MAX_LEVELS, Case, axis_point
 from .starts import combine_starts
 
 #: Swept axes in case-id order (the first varies slowest).
@@ -57,9 +57,6 @@ TURBINE_AXES = ("tip_speed_ratio", "radius", "altitude", "thrust_coefficient")
 #: The optimiser's starts per turbine case: the turbine BILD blade, the linear cold start.  In the store's
 #: ``best_start`` column they count as the propeller sweep's starts 1 and 3.
 TURBINE_STARTS = ("bild", "linear")
-_METRICS = ("thrust_coefficient", "torque_coefficient", "power_coefficient", "efficiency", "figure_of_merit",
-            "energy_loss")
-_PROBLEMS = {}
 
 
 @dataclass(frozen=True)
@@ -143,12 +140,7 @@ class TurbineSweepSpec:
         values, levels = self.axis_values(), int(self.levels)
         out = []
         for case_id in ids:
-            if not 0 <= case_id < self.num_cases:
-                raise ValueError(f"case_id must be in [0, {self.num_cases}), got {case_id}")
-            index, rest = {}, case_id
-            for name in reversed(TURBINE_AXES):
-                rest, index[name] = divmod(rest, levels)
-            point = {name: float(values[name][index[name]]) for name in TURBINE_AXES}
+            point = axis_point(case_id, levels, values, TURBINE_AXES)
             radius, wind = point["radius"], float(self.wind_speed)
             rpm = point["tip_speed_ratio"] * wind / radius / RPM_TO_RAD_PER_S
             inputs = dict(point, advance_ratio=np.pi / point["tip_speed_ratio"], reference_chord=None, rpm=rpm,
@@ -211,74 +203,15 @@ def turbine_bild_batch(cases):
     return results
 
 
-def _problem(inputs, optimizer):
-    key = (optimizer, int(inputs["num_radial"]), int(inputs["num_blades"]), inputs["airfoil"])
-    if key not in _PROBLEMS:
-        try:
-            _PROBLEMS[key] = build_optimization_problem(optimizer=optimizer, num_radial=key[1], num_blades=key[2],
-                                                        polar=sweep_polar(key[3]), rotor_type="turbine")
-        except ImportError:
-            raise
-        except Exception as exc:  # a set-up failure, not a result of the cases: a rerun retries them
-            raise CaseSetupError(f"the turbine BEM optimisation cannot be set up: {type(exc).__name__}: {exc}") \
-                from exc
-    return _PROBLEMS[key]
-
-
-def _start(payloads, initial, optimizer):
-    """One start of every payload, one lockstep run per configuration: rows or exceptions."""
-    out = [None] * len(payloads)
-    groups = {}
-    for k, (case, _bild) in enumerate(payloads):
-        chosen = case.optimizer if optimizer is None else optimizer
-        groups.setdefault((chosen,) + tuple(case.inputs[key] for key in ("num_radial", "num_blades", "airfoil")),
-                          []).append(k)
-    for (chosen, *_), members in groups.items():
-        try:
-            prob = _problem(payloads[members[0]][0].inputs, chosen)
-        except CaseSetupError as exc:
-            for k in members:
-                out[k] = exc
-            continue
-        column = {key: np.array([payloads[k][0].inputs[key] for k in members], dtype=float)
-                  for key in ("v_axial", "rpm", "radius", "hub_radius", "altitude")}
-        thrust = np.array([payloads[k][1]["thrust"] for k in members], dtype=float)
-        geometry = {}
-        if initial == "bild":
-            geometry = {f"bild_{key}": np.array([payloads[k][1][key] for k in members], dtype=float)
-                        for key in ("chord", "twist")}
-        args = (column["v_axial"], column["rpm"], column["radius"], column["hub_radius"], thrust, column["altitude"])
-        try:
-            results = optimize_rotors(*args, problem=prob, initial=initial, restarts=1, **geometry)
-        except ValueError:  # a case the optimisation rejects: every case alone, so that only that one fails
-            results = []
-            for j in range(len(members)):
-                try:
-                    results += optimize_rotors(*(a[j:j + 1] for a in args), problem=prob, initial=initial,
-                                               restarts=1, **{key: v[j:j + 1] for key, v in geometry.items()})
-                except ValueError as exc:
-                    results.append(exc)
-        for k, result in zip(members, results):
-            out[k] = result if isinstance(result, Exception) else _row(result)
-    return out
-
-
-def _row(result):
-    row = {name: result.performance.get(name, np.nan) for name in _METRICS}
-    row.update(chord=result.chord, twist=result.twist, converged=result.converged, status=result.status,
-               iterations=result.iterations)
-    return row
-
-
 def optimize_turbine_cases(payloads, optimizer=None):
     """Full-BEM optimisations of a chunk of turbine cases in lockstep, each the most power at its BILD design's
     thrust; with ``starts == 2`` also from the linear cold start, the row then the better optimum with the
     spread (:func:`~bild_mdo.verification.starts.combine_starts`).  Per case a row or the exception it raised."""
-    first = _start(payloads, "bild", optimizer)
+    first = optimize_start(payloads, optimizer, "bild")
     chosen = [k for k, (case, _bild) in enumerate(payloads) if case.starts >= 2]
     second = [None] * len(payloads)
     if chosen:
-        for k, row in zip(chosen, _start([payloads[k] for k in chosen], "linear", optimizer)):
+        for k, row in zip(chosen, optimize_start([payloads[k] for k in chosen], optimizer, "linear")):
             second[k] = row
     return [combine_starts([first[k], None, second[k]]) if case.starts >= 2 else first[k]
             for k, (case, _bild) in enumerate(payloads)]
