@@ -72,11 +72,20 @@ _DEFAULTS = {"power_coefficient": 0.48, "radius": 63.0, "rho": 1.225, "rated_pow
              "weibull_shape": 2.0, "cut_in_speed": 3.0, "cut_out_speed": 25.0}
 
 
-def _weibull(v, c, k):
-    """``z = (V/c)**k``, ``exp(-z)`` and ``ln(V/c)``."""
+def weibull_density(v, c, k):
+    """``f(V)`` and its partials ``(df/dV, df/dc, df/dk)`` (complex-safe)."""
     log_ratio = np.log(v / c)
     z = np.exp(k * log_ratio)
-    return z, np.exp(-z), log_ratio
+    f = k / c * np.exp((k - 1.0) * log_ratio - z)
+    return f, f * (k - 1.0 - k * z) / v, f * k * (z - 1.0) / c, f * (1.0 / k + log_ratio * (1.0 - z))
+
+
+def weibull_survival(v, c, k):
+    """``exp(-(V/c)**k)`` and its partials ``(d/dV, d/dc, d/dk)``."""
+    log_ratio = np.log(v / c)
+    z = np.exp(k * log_ratio)
+    s = np.exp(-z)
+    return s, -s * k * z / v, s * k * z / c, -s * z * log_ratio
 
 
 class AnnualEnergyComp(om.ExplicitComponent):
@@ -130,20 +139,16 @@ class AnnualEnergyComp(om.ExplicitComponent):
         half = 0.5 * (b - v_in)
         t = 0.5 * (self._nodes + 1.0)
         v = v_in[:, None] + (b - v_in)[:, None] * t
-        z, ez, log_ratio = _weibull(v, c[:, None], k[:, None])
-        kk = k[:, None]
-        g = kk * v * v * z * ez                       # V**3 f(V)
-        g_v = kk * v * z * ez * (2.0 + kk * (1.0 - z))
-        g_c = -kk * kk * v * v * z * (1.0 - z) * ez / c[:, None]
-        g_k = v * v * z * ez * (1.0 + kk * (1.0 - z) * log_ratio)
+        f, f_v, f_c, f_k = weibull_density(v, c[:, None], k[:, None])
+        v3 = v ** 3
+        g, g_v, g_c, g_k = v3 * f, 3.0 * v * v * f + v3 * f_v, v3 * f_c, v3 * f_k    # V**3 f(V) and its partials
         w = self._weights
         integral = half * (g @ w)
-        z_b, ez_b, log_b = _weibull(b, c, k)
-        z_o, ez_o, log_o = _weibull(v_out, c, k)
-        energy = _YEAR * (gain * integral + p_rated * (ez_b - ez_o))
-        return dict(cp=cp, radius=radius, rho=rho, p_rated=p_rated, c=c, k=k, gain=gain, v_rated=v_rated, below=below,
-                    above=above, b=b, half=half, t=t, g=g, g_v=g_v, g_c=g_c, g_k=g_k, integral=integral, z_b=z_b,
-                    ez_b=ez_b, log_b=log_b, z_o=z_o, ez_o=ez_o, log_o=log_o, v_out=v_out, energy=energy)
+        survival_b, survival_o = weibull_survival(b, c, k), weibull_survival(v_out, c, k)
+        energy = _YEAR * (gain * integral + p_rated * (survival_b[0] - survival_o[0]))
+        return dict(cp=cp, radius=radius, rho=rho, p_rated=p_rated, gain=gain, v_rated=v_rated, below=below,
+                    above=above, b=b, half=half, t=t, g=g, g_v=g_v, g_c=g_c, g_k=g_k, integral=integral,
+                    survival_b=survival_b, survival_o=survival_o, energy=energy)
 
     def compute(self, inputs, outputs):
         self._check(inputs)
@@ -155,7 +160,7 @@ class AnnualEnergyComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         s = self._terms(inputs)
         w = self._weights
-        t, half, gain, p_rated, c, k, b = (s[n] for n in ("t", "half", "gain", "p_rated", "c", "k", "b"))
+        t, half, gain, p_rated = (s[n] for n in ("t", "half", "gain", "p_rated"))
         g, g_v = s["g"], s["g_v"]
         sum_g = g @ w
         # The region-2 integral: its limits a = V_in, b and the Weibull parameters.
@@ -163,11 +168,10 @@ class AnnualEnergyComp(om.ExplicitComponent):
         d_int_b = half * (g_v @ (w * t)) + 0.5 * sum_g
         d_int_c, d_int_k = half * (s["g_c"] @ w), half * (s["g_k"] @ w)
         # The region-3 energy P_r (exp(-z_b) - exp(-z_o)).
-        f_b = k * s["z_b"] * s["ez_b"] / b
-        f_o = k * s["z_o"] * s["ez_o"] / s["v_out"]
-        d3_b = -p_rated * f_b
-        d3_c = p_rated * k / c * (s["ez_b"] * s["z_b"] - s["ez_o"] * s["z_o"])
-        d3_k = p_rated * (-s["ez_b"] * s["z_b"] * s["log_b"] + s["ez_o"] * s["z_o"] * s["log_o"])
+        (s_b, s_b_v, s_b_c, s_b_k), (s_o, s_o_v, s_o_c, s_o_k) = s["survival_b"], s["survival_o"]
+        d3_b = p_rated * s_b_v
+        d3_c = p_rated * (s_b_c - s_o_c)
+        d3_k = p_rated * (s_b_k - s_o_k)
         d_b = gain * d_int_b + d3_b
         inside = ~(s["below"] | s["above"])
         db_vr = np.where(inside, 1.0, 0.0)
@@ -176,11 +180,11 @@ class AnnualEnergyComp(om.ExplicitComponent):
         d_gain = s["integral"] + d_b * db_vr * dvr_gain
         d_gain_x = {"power_coefficient": gain / s["cp"], "radius": 2.0 * gain / s["radius"], "rho": gain / s["rho"]}
         energy = {name: _YEAR * d_gain * value for name, value in d_gain_x.items()}
-        energy["rated_power"] = _YEAR * (s["ez_b"] - s["ez_o"] + d_b * db_vr * dvr_p)
+        energy["rated_power"] = _YEAR * (s_b - s_o + d_b * db_vr * dvr_p)
         energy["weibull_scale"] = _YEAR * (gain * d_int_c + d3_c)
         energy["weibull_shape"] = _YEAR * (gain * d_int_k + d3_k)
         energy["cut_in_speed"] = _YEAR * (gain * d_int_a + d_b * np.where(s["below"], 1.0, 0.0))
-        energy["cut_out_speed"] = _YEAR * (p_rated * f_o + d_b * np.where(s["above"], 1.0, 0.0))
+        energy["cut_out_speed"] = _YEAR * (-p_rated * s_o_v + d_b * np.where(s["above"], 1.0, 0.0))
         scale = 1.0 / (_YEAR * p_rated)
         for name, value in energy.items():
             partials["annual_energy", name] = value

@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.energy.annual_energy import HOURS_PER_YEAR
+from bild_mdo.energy.annual_energy import HOURS_PER_YEAR, weibull_density, weibull_survival
 from bild_mdo.energy.wind_speeds import declare_wind_speed_option, lobatto, region_sizes
 
 _YEAR = HOURS_PER_YEAR * 3600.0
@@ -31,22 +31,6 @@ _UNITS = {"cut_in_speed": "m/s", "rated_wind_speed": "m/s", "cut_out_speed": "m/
           "weibull_scale": "m/s", "weibull_shape": None}
 _DEFAULTS = {"cut_in_speed": 3.0, "rated_wind_speed": 11.0, "cut_out_speed": 25.0, "rated_power": 5.0e6,
              "weibull_scale": 8.0, "weibull_shape": 2.0}
-
-
-def weibull_density(v, c, k):
-    """``f(V)`` and its partials ``(df/dV, df/dc, df/dk)`` (complex-safe)."""
-    log_ratio = np.log(v / c)
-    z = np.exp(k * log_ratio)
-    f = k / c * np.exp((k - 1.0) * log_ratio - z)
-    return f, f * (k - 1.0 - k * z) / v, f * k * (z - 1.0) / c, f * (1.0 / k + log_ratio * (1.0 - z))
-
-
-def weibull_survival(v, c, k):
-    """``exp(-(V/c)**k)`` and its partials ``(d/dV, d/dc, d/dk)``."""
-    log_ratio = np.log(v / c)
-    z = np.exp(k * log_ratio)
-    s = np.exp(-z)
-    return s, -s * k * z / v, s * k * z / c, -s * z * log_ratio
 
 
 class CurveEnergyComp(om.ExplicitComponent):
