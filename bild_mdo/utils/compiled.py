@@ -66,7 +66,7 @@ def kernel(function):
     previous = config.CACHE_DIR
     config.CACHE_DIR = CACHE_FOLDER
     try:
-        return numba.njit(cache=True, error_model="numpy", nogil=True)(function)
+        return numba.njit(cache=True, error_model="numpy", nogil=True, fastmath={"contract", "arcp"})(function)
     finally:
         config.CACHE_DIR = previous
 

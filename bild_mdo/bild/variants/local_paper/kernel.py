@@ -60,8 +60,8 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
     ends at ``eta2 = 1/2`` with ``cd/cl = 0``); the first angle is the paper loading's at ``start_ratio``, at
     ``lowest_ratio`` where that leaves the station unloaded;
     ``settings``: ``(barrier, max_iter, angle_tol, root_step, start_ratio, lowest_ratio,
-    switches)``.  Writes ``out[n, 10]``: ``phi, x0, label, code`` (code 0 loaded, 1 unloaded, 4 outside the domain, 5 loaded past the
-    table's top) and, where loaded, the station's values
+    switches)``.  Writes ``out[10, n]``: ``phi, x0, label, code`` (code 0 loaded, 1 unloaded, 4 outside the domain, 5 loaded past the
+    table's top) and, where loaded, the station's values (NaN elsewhere)
     (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
     """
     coef, slots, cover_first, cover_last, offset, kind, _, _, _, grid, coef_ell, coef_alpha = table
@@ -77,7 +77,9 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
     c[_X_FIRST], c[_TORQUE], c[_LOSS], c[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
     trail = np.zeros(6)
     for j in range(flow.shape[1]):
-        row = out[j]
+        row = out[:, j]
+        for q in range(4, 10):
+            row[q] = math.nan
         trail_begin(trail, flow, j)
         ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, 0.0)
         if not ok:

@@ -137,9 +137,8 @@ def solve_stations(table, flow):
     from bild_mdo.bild.variants.local_paper.kernel import solve_all
     from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, table_arrays
 
-    out = np.empty((flow.r.size, 10))
-    out[:, 4:] = np.nan
+    out = np.empty((10, flow.r.size))
     settings = np.array([BARRIER, _MAX_ITERATIONS, ANGLE_TOL, ROOT_STEP, START_RATIO, LOWEST_RATIO, SWITCHES])
     solve_all(table_arrays(table), flow_rows(flow), flow.num_blades, flow.chord_form == "torque",
               LOSS_CODES[flow.loss_model], settings, out)
-    return PaperSolution(out[:, 1], out[:, 2].astype(int), out[:, 3].astype(int), out[:, 4:])
+    return PaperSolution(out[1], out[2].astype(int), out[3].astype(int), out[4:].T)

@@ -24,8 +24,9 @@ from bild_mdo.utils.compiled import kernel
 _TWO_OVER_PI = 2.0 / math.pi
 #: Newton steps on R2 in x0 per trial at most, and the step (in x0 = ln Re + ln cl) after which no more is taken:
 #: a trial's residual is then that of a state on R2 = 0 to round-off, so the angle solve converges
-#: quadratically also from a poor x0 (a warm start, a probe).
-X0_PASSES, X0_TOL = 4, 1e-9
+#: quadratically also from a poor x0 (a warm start, a probe); nor where the steps so far predict the next one
+#: (``|d|**3 / |d_before|**2``, quadratic convergence) below X0_ROUNDOFF, the round-off of x0 (about 10).
+X0_PASSES, X0_TOL, X0_ROUNDOFF = 4, 1e-9, 1e-15
 _INV_STEP = 1.0 / X_STEP
 #: Hub exponent above which the hub factor is 1 (``1 - (2/pi) exp(-f)`` rounds to 1) and its derivatives
 #: (``~ exp(-f) f cot(phi)**2``, below 1e-16 for ``phi > 2 deg``) are dropped: they change no result beyond round-off.
@@ -169,17 +170,21 @@ def sheet_s(coef, x_first, low, high, offset, x0):
 
 
 @kernel
-def light_load(log_k, f, sn, cs, s, vx, vt, torque, log_p):
-    """``x_m`` and ``dx_m/ds`` at ``(phi, s)`` (as :func:`~bild_mdo.bild.variants.local_point.load_path_model.
-    _light_log_load`)."""
+def _load_terms(sn, cs, s, vx, vt, torque):
+    """``(A, dA/ds, load, dload/ds)`` at ``(phi, s)``: :func:`light_load` before its logarithm and divisions."""
     a = vx * (sn + s * cs) + vt * (cs - s * sn)
     a_s = vx * cs - vt * sn
     u, u_s = a * sn, a_s * sn
     if torque:
         w, w_s = a * cs, a_s * cs
-        load, load_s = u * (vt - w), u_s * (vt - w) - u * w_s
-    else:
-        load, load_s = u * (u - vx), u_s * (2.0 * u - vx)
+        return a, a_s, u * (vt - w), u_s * (vt - w) - u * w_s
+    return a, a_s, u * (u - vx), u_s * (2.0 * u - vx)
+
+
+@kernel
+def light_load(log_k, f, sn, cs, s, vx, vt, torque, log_p):
+    """``x_m``, ``dx_m/ds`` at ``(phi, s)`` (as ``load_path_model._light_log_load``)."""
+    a, a_s, load, load_s = _load_terms(sn, cs, s, vx, vt, torque)
     return log_k + math.log(f * load / (a * a)) - log_p, load_s / load - 2.0 * a_s / a
 
 
@@ -188,9 +193,8 @@ def on_sheet(coef, x_first, low, high, offset, log_k, f, sn, cs, vx, vt, torque,
     """The state on a sheet at ``phi`` from the prediction ``x0``: Newton steps on ``R2`` in ``x0`` (one where the
     prediction was good, at most :data:`X0_PASSES`), the cubic moved with ``x0`` exactly inside its cell.
 
-    Returns ``(where, x0, s, s', s'', x_m, dx_m/ds, s_before)``: ``where`` 2 on the sheet, 1 left by the
-    correction (``x0`` the corrected coordinate), 0 off it at the prediction; ``x_m`` and its slope at
-    ``s_before``, the ``s`` before the last step."""
+    Returns ``(where, x0, s, s', s'', x_m, dx_m/ds, s_before)``: ``where`` 2 on the sheet, 1 left by the correction
+    (``x0`` the corrected one), 0 off it at the prediction; ``x_m`` and its slope at ``s_before``, the last ``s``."""
     nan = _NAN
     covered, u, c0, c1, c2, c3 = lookup(coef, x_first, low, high, offset, x0)
     if not covered:
@@ -199,12 +203,18 @@ def on_sheet(coef, x_first, low, high, offset, log_k, f, sn, cs, vx, vt, torque,
     s1 = (c1 + u * (2.0 * c2 + 3.0 * u * c3)) * _INV_STEP
     s2 = (2.0 * c2 + 6.0 * u * c3) * _INV_STEP * _INV_STEP
     s3 = 6.0 * c3 * _INV_STEP ** 3
-    x_m, x_s, s_start = nan, nan, sv
+    a, a_s, load, load_s, s_start = nan, nan, nan, nan, sv
+    log_base = log_k - log_p
+    d_before = 0.0  # no step before the first
     for _ in range(X0_PASSES):
         s_start = sv
-        x_m, x_s = light_load(log_k, f, sn, cs, sv, vx, vt, torque, log_p)
+        a, a_s, load, load_s = _load_terms(sn, cs, sv, vx, vt, torque)
+        # R2 = x_m - x0 - ln(1 + tau s), dR2/dx0 = s' (load_s / load - 2 A_s / A - tau / (1 + tau s)) - 1: one
+        # logarithm and one division (by the product of the three).
         ratio = 1.0 + tau * sv
-        d = -(x_m - x0 - math.log(ratio)) / (x_s * s1 - 1.0 - tau * s1 / ratio)
+        below = load * a * ratio
+        above = (load_s * a - 2.0 * a_s * load) * ratio - tau * load * a
+        d = -(log_base + math.log(f * load / (a * a * ratio)) - x0) * below / (s1 * above - below)
         x0 = x0 + d
         moved = u + d * _INV_STEP
         if 0.0 <= moved <= 1.0:
@@ -219,9 +229,11 @@ def on_sheet(coef, x_first, low, high, offset, log_k, f, sn, cs, vx, vt, torque,
             s1 = (c1 + u * (2.0 * c2 + 3.0 * u * c3)) * _INV_STEP
             s2 = (2.0 * c2 + 6.0 * u * c3) * _INV_STEP * _INV_STEP
             s3 = 6.0 * c3 * _INV_STEP ** 3
-        if not abs(d) > X0_TOL:
+        size = abs(d)
+        if not (size > X0_TOL and (d_before == 0.0 or size * size * size > X0_ROUNDOFF * d_before * d_before)):
             break
-    return 2, x0, sv, s1, s2, x_m, x_s, s_start
+        d_before = size
+    return 2, x0, sv, s1, s2, log_base + math.log(f * load / (a * a)), load_s / load - 2.0 * a_s / a, s_start
 
 
 @kernel

@@ -10,6 +10,8 @@ from bild_mdo.utils.options import declare_size_options
 #: Placeholder section point of a station without one (unloaded, or outside the table): finite, and the chord
 #: is zero there anyway (no load).
 PLACEHOLDER = {"alpha_star": 0.1, "cl_star": 1.0, "cd_star": 0.02}
+#: Outputs of a station without a load: eta2 = 1, zero Reynolds numbers and the section point :data:`PLACEHOLDER`.
+UNLOADED_OUTPUTS = {"eta2": 1.0, "reynolds": 0.0, "load_reynolds": 0.0, **PLACEHOLDER}
 
 
 def declare_local_options(options, radial=True):
@@ -36,9 +38,3 @@ def station_failures(method):
     }
 
 
-def placeholder_point(n):
-    """Outputs of stations without a load (flat arrays): eta2 = 1, zero Reynolds numbers and the section point
-    :data:`PLACEHOLDER`."""
-    values = {"eta2": np.ones(n), "reynolds": np.zeros(n), "load_reynolds": np.zeros(n)}
-    values.update({name: np.full(n, value) for name, value in PLACEHOLDER.items()})
-    return values

@@ -17,6 +17,9 @@ from bild_mdo.utils.compiled import bracketed_newton_for, kernel
 #: Tolerance of ``eta2`` in the paper loading's first angle (a start: its error is far below the distance to
 #: the solution).
 FIRST_TOL = 1e-10
+#: Last Newton step on the Taylor polynomial (which is the quartic itself, re-expanded) below which its iterate is
+#: the root: Newton's method converges quadratically there, so the next step would be far below FIRST_TOL.
+TAYLOR_STEP = 1e-8
 
 
 @kernel
@@ -110,18 +113,20 @@ _taylor = kernel(_taylor_coefficients)
 
 @kernel
 def _taylor_start(vx, vt, lam, s):
-    """``t = 1 - eta2`` from the quadratic model and two Newton steps on the Taylor polynomial of the quartic
-    about ``eta2 = 1`` (:func:`bild_mdo.bild.variants.paper.eta2._taylor_coefficients`, :func:`bild_mdo.bild.variants.paper.eta2._start`; in
-    hover the cubic ``P / t``)."""
+    """``(t, step)``: ``t = 1 - eta2`` from the quadratic model and two Newton steps on the Taylor polynomial of
+    the quartic about ``eta2 = 1`` (:func:`bild_mdo.bild.variants.paper.eta2._taylor_coefficients`,
+    :func:`bild_mdo.bild.variants.paper.eta2._start`; in hover the cubic ``P / t``), and the last of the steps."""
     q0, q1, q2, q3, q4 = _taylor(vx, vt, lam, s)
     if vx == 0.0:
         q0, q1, q2, q3, q4 = q1, q2, q3, q4, 0.0
     a = 4.0 / 3.0  # bild_mdo.bild.variants.paper.eta2._START_SHIFT
     w = q1 + 2.0 * a * q0
     t = -2.0 * q0 / (w + math.sqrt(max(q1 * q1 - 4.0 * q0 * (q2 + a * w), 0.0)))
+    step = math.inf
     for _ in range(2):
-        t -= ((((q4 * t + q3) * t + q2) * t + q1) * t + q0) / ((((4.0 * q4 * t + 3.0 * q3) * t + 2.0 * q2) * t + q1))
-    return t
+        step = ((((q4 * t + q3) * t + q2) * t + q1) * t + q0) / ((((4.0 * q4 * t + 3.0 * q3) * t + 2.0 * q2) * t + q1))
+        t -= step
+    return t, step
 
 
 @kernel
@@ -129,8 +134,9 @@ def paper_angle_one(work, vx, vt, lam, s):
     """The paper loading's inflow angle at ``cd/cl = s`` (``work``: a float array of one element, the caller's,
     so that no call allocates): ``eta2`` of the quartic (27) on ``[1/2, 1]``, ``u_axial`` from Eq. (26), ``phi = atan2(u_axial, eta2 V_theta)``; NaN where the quartic has no
     root below 1 (an unloaded station)."""
-    # The bracket ends in closed form (bild_mdo.bild.variants.paper.eta2._solve_tail); the first iterate from the Taylor model of
-    # bild_mdo.bild.variants.paper.eta2._solve, else by false position.
+    # The bracket ends in closed form (bild_mdo.bild.variants.paper.eta2._solve_tail); the root from the Taylor model of
+    # bild_mdo.bild.variants.paper.eta2._solve where its Newton steps have converged, else the bracketed solve from
+    # there (by false position where it lies outside the bracket).
     sv = s * vt
     if vx == 0.0:
         f_lo, f_hi = 0.5 * vt * vt * vt * vt, 2.0 * vt * vt * (lam + sv) * (sv - 2.0 * lam)
@@ -139,12 +145,13 @@ def paper_angle_one(work, vx, vt, lam, s):
         f_hi = -lam * vx * (vx + 2.0 * sv) * (lam + vx + sv)
     if not f_hi < 0.0:
         return math.nan
-    start = 1.0 - _taylor_start(vx, vt, lam, s)
-    if not 0.5 < start < 1.0:
-        start = min(max(0.5 - 0.5 * f_lo / (f_hi - f_lo), 0.501), 1.0 - 1e-12)
-    eta, converged, _, _, _ = _quartic_root(work, (vx, vt, lam, s), 0.5, 1.0, 1.0, start, 100, FIRST_TOL)
-    if not converged or eta >= 1.0:
-        return math.nan
+    t, step = _taylor_start(vx, vt, lam, s)
+    eta = 1.0 - t
+    if not (0.5 < eta < 1.0 and abs(step) <= TAYLOR_STEP):
+        start = eta if 0.5 < eta < 1.0 else min(max(0.5 - 0.5 * f_lo / (f_hi - f_lo), 0.501), 1.0 - 1e-12)
+        eta, converged, _, _, _ = _quartic_root(work, (vx, vt, lam, s), 0.5, 1.0, 1.0, start, 100, FIRST_TOL)
+        if not converged or eta >= 1.0:
+            return math.nan
     b = 0.5 * (vx - vt * s)
     c = eta * vt * (vt * (1.0 - eta) + vx * s)
     root = math.sqrt(b * b + c)

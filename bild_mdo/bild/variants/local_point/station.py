@@ -23,7 +23,7 @@ from bild_mdo.airfoil.load_path_table import load_path_table
 from bild_mdo.bem.prandtl import loss_inputs
 from bild_mdo.bild.feasibility import report_station_status
 from bild_mdo.bild.variants.local_point.load_path_model import FLOW_ARRAYS, INPUTS, StationFlow, take
-from bild_mdo.bild.variants.local_point.options import declare_local_options, placeholder_point
+from bild_mdo.bild.variants.local_point.options import UNLOADED_OUTPUTS, declare_local_options
 from bild_mdo.utils.jet import eliminate, jacobian
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
@@ -34,6 +34,7 @@ WARM_RANGE = 1e-2
 _NODE = {"ideal_loading_constant": "lam", "v_axial": "v_axial", "rho": "rho", "mu": "mu", "radius": "radius",
          "hub_radius": "hub_radius"}
 _DIST = {"v_theta": "v_theta", "radii": "r"}
+_UNLOADED_ROW = np.array([UNLOADED_OUTPUTS[name] for name in OUTPUTS])
 
 
 class LocalStationComp(om.ExplicitComponent):
@@ -62,6 +63,7 @@ class LocalStationComp(om.ExplicitComponent):
         declare_local_options(self.options)
         self._cache = None
         self._table = None
+        self._rows = None
         #: Start a station from its last solution where it was loaded and lambda moved by at most
         #: :data:`WARM_RANGE` (the passes of a thrust-target solve after the first set it).
         self.warm_start = False
@@ -116,7 +118,14 @@ class LocalStationComp(om.ExplicitComponent):
         # One [8, n] block whose rows are the flow's arrays: the rows the compiled solves read, without a copy
         # (flow_rows of reynolds_exact.solve).
         values = [get(fields[field]) for field in FLOW_ARRAYS]
-        rows = np.empty((len(values), shape[0] * shape[1]), dtype=np.result_type(*values))
+        size, dtype = (len(values), shape[0] * shape[1]), np.result_type(*values)
+        if dtype == float:
+            # The real flow is read once per solve and not kept (take copies): one block reused from call to call.
+            if self._rows is None or self._rows.shape != size:
+                self._rows = np.empty(size)
+            rows = self._rows
+        else:
+            rows = np.empty(size, dtype=dtype)
         for row, value in zip(rows, values):
             row.reshape(shape)[...] = value[:, None] if value.ndim == 1 else value
         opts = self.options
@@ -133,43 +142,50 @@ class LocalStationComp(om.ExplicitComponent):
             return previous
         flow = self._flow(inputs)
         kept = np.zeros(shape[0], dtype=bool) if previous is None else np.all(key == previous["key"], axis=1)
-        stations = np.flatnonzero(np.repeat(~kept, shape[1]))
-        if previous is not None:
+        start = None
+        if kept.any():
+            stations = np.flatnonzero(np.repeat(~kept, shape[1]))
+            if self.warm_start and stations.size:
+                start = self._warm_start(inputs, previous, stations)
+            part = take(flow, stations)
+        else:
+            # Every design changed (a new batch, a new point of a sweep): no copies of the last solution.
+            stations = None
+            if self.warm_start and previous is not None:
+                start = self._warm_start(inputs, previous, slice(None))
+            part = flow
+        if stations is None:
+            states, label, status, table = self.solve(part, start)
+        else:
             states = tuple(x.copy() for x in previous["states"])
             label, status = previous["label"].copy(), previous["status"].copy()
-        if stations.size:
-            start = None
-            if self.warm_start and previous is not None:
-                # Only stations that were loaded, under a lambda within WARM_RANGE of theirs: a larger step (the
-                # first passes of a thrust target) can cross to another branch, which a cold start sees afresh.
-                lam = np.repeat(np.real(inputs["ideal_loading_constant"]), shape[1])[stations]
-                near = (previous["status"][stations] == self.LOADED) & (
-                    np.abs(lam / previous["lam"][stations] - 1.0) <= WARM_RANGE)
-                states_prev = tuple(np.where(near, x[stations], np.nan) for x in previous["states"])
-                start = (states_prev, np.where(near, previous["label"][stations], -1))
-            part = flow if stations.size == flow.r.size else take(flow, stations)
-            part_states, part_label, part_status, part_values = self.solve(part, start)
-            if previous is None:
-                states = tuple(np.full(flow.r.size, np.nan) for _ in part_states)
-                label, status = np.full(flow.r.size, -1), np.zeros(flow.r.size, dtype=int)
-                table = np.full((flow.r.size, len(OUTPUTS)), np.nan)
-            else:
-                table = previous["value_table"].copy()
-            for full, part in zip(states, part_states):
-                full[stations] = part
-            label[stations], status[stations] = part_label, part_status
-            table[stations] = part_values
-        else:
-            table = previous["value_table"]
+            table = previous["value_table"].copy()
+            if stations.size:
+                part_states, part_label, part_status, part_values = self.solve(part, start)
+                for full, part_state in zip(states, part_states):
+                    full[stations] = part_state
+                label[stations], status[stations] = part_label, part_status
+                table[stations] = part_values
         report_station_status(self, status.reshape(shape), self.FAILURES, np.real(inputs["v_axial"])[:, None],
                               np.real(inputs["v_theta"]), np.real(inputs["ideal_loading_constant"])[:, None])
-        loaded = np.flatnonzero(status == self.LOADED)
-        values = placeholder_point(flow.r.size)
-        for k, name in enumerate(OUTPUTS):
-            values[name][loaded] = table[loaded, k]
+        # The outputs of a station without a load (the solve leaves NaN there, or the values of a state past the
+        # table's top) are UNLOADED_OUTPUTS; the columns of the table are the outputs.
+        table[status != self.LOADED] = _UNLOADED_ROW
+        values = {name: table[:, k] for k, name in enumerate(OUTPUTS)}
         self._cache = {"key": key, "states": states, "label": label, "status": status, "values": values,
                        "value_table": table, "linear": None, "lam": flow.lam.copy()}
         return self._cache
+
+    def _warm_start(self, inputs, previous, stations):
+        """The last solution's ``(states, label)`` at ``stations`` where they start a solve: only stations that
+        were loaded, under a lambda within :data:`WARM_RANGE` of theirs (a larger step, the first passes of a
+        thrust target, can cross to another branch, which a cold start sees afresh); NaN and -1 elsewhere."""
+        shape = inputs["v_theta"].shape
+        lam = np.repeat(np.real(inputs["ideal_loading_constant"]), shape[1])[stations]
+        near = (previous["status"][stations] == self.LOADED) & (
+            np.abs(lam / previous["lam"][stations] - 1.0) <= WARM_RANGE)
+        return (tuple(np.where(near, x[stations], np.nan) for x in previous["states"]),
+                np.where(near, previous["label"][stations], -1))
 
     def _linear(self, inputs, cache):
         """Jets at the loaded stations and the implicit-function sensitivities of their states."""
@@ -189,7 +205,7 @@ class LocalStationComp(om.ExplicitComponent):
     def compute(self, inputs, outputs):
         cache = self._solve(inputs)
         shape = inputs["v_theta"].shape
-        values = {name: value.copy() for name, value in cache["values"].items()}
+        values = dict(cache["values"])  # outputs[name] = ... copies them into the output vector
         if self.under_complex_step:
             at, names, real_outputs, jac, _ = self._linear({k: np.real(v) for k, v in inputs.items()}, cache)
             if at.size:

@@ -68,13 +68,13 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     """Solve every station (module docstring).
 
     ``flow[8, n]``: the stations (:func:`~bild_mdo.bild.variants.local_point.kernels.station_setup`); the first
-    angle is the paper loading's at ``start_ratio``; ``guess, first_label[n]``: a warm start (NaN, -1: none), the angle
-    where the solve on sheet ``first_label`` begins; ``settings``: ``(barrier,
+    angle is the paper loading's at ``start_ratio``; ``guess, first_label[n]``: a warm start (NaN, -1: none; empty
+    arrays: none anywhere), the angle where the solve on sheet ``first_label`` begins; ``settings``: ``(barrier,
     max_iter, angle_tol, root_step, start_ratio, prune_factor, fold_window, fold_margin)``; ``probes``: the
-    probe steps; ``search``: the fractions of the bracket of the grid search.  Writes ``out[n, 11]``: ``phi,
+    probe steps; ``search``: the fractions of the bracket of the grid search.  Writes ``out[11, n]``: ``phi,
     x0, label, code, Phi`` (code 0 loaded, 1 unloaded, 3 overloaded, 4 outside the domain, 5 loaded past the table's
-    top) and, where
-    loaded, the station's values (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
+    top) and, where loaded (NaN elsewhere), the station's values
+    (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
     """
     coef, slots, cover_first, cover_last, offset, kind, end_x0, end_label, end_inward, grid, coef_ell, coef_alpha = table
     sheets = (cover_first, cover_last, offset, kind)
@@ -90,8 +90,11 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     c = np.zeros(_PARAMS_SIZE)
     c[_X_FIRST], c[_TORQUE], c[_LOSS] = x_first, 1.0 if torque else 0.0, loss
     trail = np.zeros(6)
-    for j in range(guess.size):
-        row = out[j]
+    warm_any = guess.size > 0
+    for j in range(out.shape[1]):
+        row = out[:, j]
+        for q in range(5, 11):
+            row[q] = math.nan
         trail_begin(trail, flow, j)
         ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, start_ratio)
         if not ok:
@@ -101,9 +104,10 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
         c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
         first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
         first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
-        warm, warm_label = (guess[j], first_label[j]) if math.isfinite(guess[j]) else (first, -1)
+        guess_j = guess[j] if warm_any else math.nan
+        warm, warm_label = (guess_j, first_label[j]) if math.isfinite(guess_j) else (first, -1)
         trail_label, offset_j = trail_prediction(trail, flow[3, j])
-        if trail_label >= 0 and not math.isfinite(guess[j]):
+        if trail_label >= 0 and not math.isfinite(guess_j):
             # No warm start: the solve on the sheet of the station inward begins where the offset of the stations
             # inward predicts (it changes where Newton's method begins, not which sheets are tried).
             warm, warm_label = min(max(first + offset_j, lo_j), hi_j), trail_label
@@ -167,9 +171,10 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
                         near_label[near], near_x0[near], near_phi[near] = labels[m], x0s[m], best_phi
                         near += 1
             if math.isfinite(best_rate) and best_rate != 0.0:
-                for e in range(end_x0.size):
-                    if end_x0[e] < best_x0 - window or end_x0[e] >= best_x0 + window:
-                        continue
+                # The ends are sorted by x0 (LoadPathTable.sheet_ends): those in the window, in that order.
+                for e in range(np.searchsorted(end_x0, best_x0 - window), end_x0.size):
+                    if end_x0[e] >= best_x0 + window:
+                        break
                     label = end_label[e]
                     target = end_x0[e] + end_inward[e] * (margin * X_STEP)
                     phi_p = best_phi + (target - best_x0) / best_rate
