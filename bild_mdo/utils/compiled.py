@@ -16,7 +16,9 @@ arithmetic; those run as numba-compiled loops over the elements instead
   modules that compile, so a design that does not need them never loads it;
 * provides :func:`kernel`, the decorator of every compiled function
   (``nopython``, cached, NumPy's floating-point semantics: a division by zero
-  gives inf, never an exception);
+  gives inf, never an exception; LLVM may fuse a multiply and an add and multiply
+  by a reciprocal, which changes round-off only: NaN, infinities and the sign of
+  zero keep their meaning);
 * provides :func:`bracketed_newton_for`, the algorithm of
   :func:`bild_mdo.utils.newton.bracketed_newton` for one element, step for
   step (the same Newton step, the same bisection fallback, the same
@@ -59,7 +61,8 @@ _EPS = 2.220446049250313e-16
 
 
 def kernel(function):
-    """Compile ``function`` with numba (nopython, cached on disk in :data:`CACHE_FOLDER`, NumPy error model)."""
+    """Compile ``function`` with numba (nopython, cached on disk in :data:`CACHE_FOLDER`, NumPy error model, the
+    fast-math flags ``contract`` and ``arcp`` only)."""
     # Numba picks a function's cache folder when it is decorated, from its configuration (which another
     # library may have loaded already); it is set for these functions only.
     config = numba.core.config
