@@ -228,9 +228,11 @@ class LocalStationComp(om.ExplicitComponent):
         cache = self._solve(inputs)
         n = cache["label"].size
         at, _, _, _, totals = self._linear(inputs, cache)
+        if at.size != n:  # zero partials at the stations without a load
+            full = np.zeros((n,) + totals.shape[1:])
+            full[at] = totals
+            totals = full
         for wrt, key in list(_DIST.items()) + list(self._node.items()):
             j = INPUTS.index(key)
             for i, name in enumerate(OUTPUTS):
-                value = np.zeros(n)
-                value[at] = totals[:, i, j]
-                partials[name, wrt] = value
+                partials[name, wrt] = totals[:, i, j]
