@@ -101,8 +101,13 @@ def solve_stations(table, flow, start=None, first_label=None):
     from bild_mdo.bild.variants.reynolds_exact.kernel import solve_all
 
     n = flow.v_theta.size
-    guess = np.empty(0) if start is None else np.asarray(start, dtype=float)
-    first = np.empty(0, dtype=np.int64) if first_label is None else np.asarray(first_label, dtype=np.int64)
+    if start is None:  # no warm start anywhere: empty arrays
+        guess, first = np.empty(0), np.empty(0, dtype=np.int64)
+    else:
+        guess = np.asarray(start, dtype=float)
+        first = np.full(n, -1, dtype=np.int64) if first_label is None else np.asarray(first_label, dtype=np.int64)
+        if guess.shape != (n,) or first.shape != (n,):
+            raise ValueError(f"solve_stations: start and first_label must have one value per station ({n})")
     out = np.empty((11, n))
     settings = np.array([BARRIER, _MAX_ITERATIONS, ANGLE_TOL, ROOT_STEP, START_RATIO, PRUNE_FACTOR, FOLD_WINDOW,
                          FOLD_MARGIN])
