@@ -1,5 +1,4 @@
 """What the station components of the two local-section-point variants share: options, failures, placeholders."""
-import numpy as np
 
 from bild_mdo.airfoil.load_path_table import REYNOLDS_SPAN
 from bild_mdo.bem.prandtl import LOSS_MODELS

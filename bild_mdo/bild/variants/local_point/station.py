@@ -142,26 +142,19 @@ class LocalStationComp(om.ExplicitComponent):
             return previous
         flow = self._flow(inputs)
         kept = np.zeros(shape[0], dtype=bool) if previous is None else np.all(key == previous["key"], axis=1)
-        start = None
-        if kept.any():
-            stations = np.flatnonzero(np.repeat(~kept, shape[1]))
-            if self.warm_start and stations.size:
-                start = self._warm_start(inputs, previous, stations)
-            part = take(flow, stations)
-        else:
+        if not kept.any():
             # Every design changed (a new batch, a new point of a sweep): no copies of the last solution.
-            stations = None
-            if self.warm_start and previous is not None:
-                start = self._warm_start(inputs, previous, slice(None))
-            part = flow
-        if stations is None:
-            states, label, status, table = self.solve(part, start)
+            warm = self.warm_start and previous is not None
+            states, label, status, table = self.solve(flow, self._warm_start(inputs, previous, slice(None))
+                                                      if warm else None)
         else:
+            stations = np.flatnonzero(np.repeat(~kept, shape[1]))
             states = tuple(x.copy() for x in previous["states"])
             label, status = previous["label"].copy(), previous["status"].copy()
             table = previous["value_table"].copy()
             if stations.size:
-                part_states, part_label, part_status, part_values = self.solve(part, start)
+                start = self._warm_start(inputs, previous, stations) if self.warm_start else None
+                part_states, part_label, part_status, part_values = self.solve(take(flow, stations), start)
                 for full, part_state in zip(states, part_states):
                     full[stations] = part_state
                 label[stations], status[stations] = part_label, part_status
