@@ -112,7 +112,8 @@ def _rotor_kwargs(design):
 
 def thrust_target(designs, polar, repeats):
     """Per variant: median ``(wall, cpu)`` of ``design_rotor`` at ``c_ref`` and for the thrust it gives there,
-    and the largest relative thrust error of the target solves."""
+    the largest relative thrust error of the target solves that met their target, and how many did not (a NaN
+    thrust: infeasible, with its reason in ``result.status``)."""
     cases = []
     for design in designs:
         kw = _rotor_kwargs(design)
@@ -120,6 +121,7 @@ def thrust_target(designs, polar, repeats):
     at_chord = {v: [] for v in VARIANTS}
     at_thrust = {v: [] for v in VARIANTS}
     error = {v: 0.0 for v in VARIANTS}
+    failed = {v: 0 for v in VARIANTS}
     thrusts = {}
     for v in VARIANTS:
         for i, (kw, chord) in enumerate(cases):
@@ -137,8 +139,11 @@ def thrust_target(designs, polar, repeats):
             at_chord[v].append(clocks(lambda: design_rotor(ref_chord=chord, **opts)))
             result = []
             at_thrust[v].append(clocks(lambda: result.append(design_rotor(thrust=thrusts[v, i], **opts))))
-            error[v] = max(error[v], abs(result[0].thrust / thrusts[v, i] - 1.0))
-    return {v: (median_pair(at_chord[v]), median_pair(at_thrust[v])) for v in VARIANTS}, error
+            if np.isfinite(result[0].thrust):
+                error[v] = max(error[v], abs(result[0].thrust / thrusts[v, i] - 1.0))
+            else:
+                failed[v] += 1
+    return {v: (median_pair(at_chord[v]), median_pair(at_thrust[v])) for v in VARIANTS}, error, failed
 
 
 def totals(designs, polar, repeats):
@@ -194,11 +199,12 @@ def main():
         _ratio_line(f"batch of {sweep['rpm'].size} designs (one run_model), per design", per, "us", 1e6, "batch",
                     lambda v: f"   feasible {feasible[v]}")
 
-    timing, error = thrust_target(designs, polar, args.repeats)
+    timing, error, failed = thrust_target(designs, polar, args.repeats)
     _ratio_line("design_rotor at c_ref (model cached)", {v: t[0] for v, t in timing.items()}, "ms", 1e3)
     _ratio_line("design_rotor(thrust=T) (model cached)", {v: t[1] for v, t in timing.items()}, "ms", 1e3, None,
                 lambda v: (f"   / same variant at c_ref: {timing[v][1][0] / timing[v][0][0]:5.2f} (CPU "
-                           f"{timing[v][1][1] / timing[v][0][1]:5.2f}); max |T/T*-1| {error[v]:.1e}"
+                           f"{timing[v][1][1] / timing[v][0][1]:5.2f}); max |T/T*-1| {error[v]:.1e}, not met "
+                           f"{failed[v]}/{args.repeats}"
                            + (f"   target <= {TARGETS['thrust']:g}x" if v == VARIANTS[3] else "")))
 
     for mode, values in totals(designs, polar, args.repeats).items():

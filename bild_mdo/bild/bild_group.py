@@ -184,7 +184,11 @@ class BILDGroup(om.Group):
         thrust_target`` (to 1e-12 relative), solved per design by
         :class:`~bild_mdo.bild.thrust_target.ReferenceChordSolver` with exact
         totals; a target out of
-        reach is an infeasible design.
+        reach is an infeasible design.  With the Reynolds-aware exact loading
+        (``section_point='local', ideal_loading='exact'``) lambda
+        (``ideal_loading_constant``) is solved instead, and ``ref_chord`` is the
+        design's chord at ``r_ref`` (the reference chord names that loading's
+        designs only piecewise).
     noise_observers : array_like or None
         None (default): no noise, the group as without this option.  An ``(n, 3)`` array of observer
         positions (m, rotor frame: x along the thrust, so an observer below a hovering lift rotor has
@@ -327,8 +331,9 @@ class BILDGroup(om.Group):
         if opts["thrust_target"]:
             #: The balance of the thrust-target solve (read by ReferenceChordSolver).
             self.thrust_target_balance = self.add_subsystem(
-                "thrust_target_balance", ThrustTargetComp(**size, **checked),
-                promotes_inputs=["dthrust_dr", "dr", "thrust_target"], promotes_outputs=["ref_chord"])
+                "thrust_target_balance", ThrustTargetComp(**size, **checked, state=self.variant.thrust_target_state),
+                promotes_inputs=["dthrust_dr", "dr", "thrust_target"],
+                promotes_outputs=[self.variant.thrust_target_state])
             self.nonlinear_solver = ReferenceChordSolver()
         self.add_subsystem("feasibility_check", FeasibilityComp(**node, ledger=self.feasibility,
                                                                 on_infeasible=opts["on_infeasible"]),

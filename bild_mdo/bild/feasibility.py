@@ -64,7 +64,7 @@ def describe_nodes(mask, reason, details, noun="node", limit=DETAILED_NODES):
     return f"{reason} at {nodes.size} {noun}(s): {shown}{more}"
 
 
-def report_infeasible(component, key, mask, reason, details):
+def report_infeasible(component, key, mask, reason, details, light=False):
     """Record (in the group's ledger) or raise (a component used alone) the infeasible nodes of one check.
 
     Parameters
@@ -79,11 +79,14 @@ def report_infeasible(component, key, mask, reason, details):
         What fails and what to change, the same for every node.
     details : dict
         Label -> array (nn,) of the values shown for each failing node.
+    light : bool
+        Whether the remedy is a larger reference chord (the design is too lightly loaded): a thrust-target
+        solve then searches above it (:attr:`FeasibilityLedger.light`).
     """
     ledger = component.options["feasibility"]
     mask = np.asarray(mask, dtype=bool)
     if ledger is not None:
-        ledger.record(f"{component.pathname}:{key}", mask, reason, details)
+        ledger.record(f"{component.pathname}:{key}", mask, reason, details, light=light)
     elif np.any(mask):
         raise om.AnalysisError(f"{component.msginfo}: {describe_nodes(mask, reason, details)}")
 
@@ -126,13 +129,18 @@ class FeasibilityLedger:
     def __init__(self, num_nodes):
         self.num_nodes = num_nodes
         self._checks = {}
+        self._light = set()
         #: True while a solver iterates over the group (thrust target): the nodes are recorded, not raised.
         self.deferred = False
 
-    def record(self, key, mask, reason, details):
+    def record(self, key, mask, reason, details, light=False):
         """Store (or replace) the result of check ``key``: see :func:`report_infeasible`."""
         self._checks[key] = (np.array(mask, dtype=bool), reason,
                              {label: np.real(np.array(values)) for label, values in details.items()})
+        if light:
+            self._light.add(key)
+        else:
+            self._light.discard(key)
 
     @property
     def infeasible(self):
@@ -141,6 +149,18 @@ class FeasibilityLedger:
         for failed, _, _ in self._checks.values():
             mask |= failed
         return mask
+
+    @property
+    def light(self):
+        """ndarray of bool (nn,): True where some check fails and every failing one asks for a larger ``ref_chord``."""
+        light = np.zeros(self.num_nodes, dtype=bool)
+        heavy = np.zeros(self.num_nodes, dtype=bool)
+        for key, (failed, _, _) in self._checks.items():
+            if key in self._light:
+                light |= failed
+            else:
+                heavy |= failed
+        return light & ~heavy
 
     def _first_check(self):
         """Index into the checks of each node's first failing check (-1 where feasible)."""

@@ -158,7 +158,7 @@ class MomentumLoadsComp(om.ExplicitComponent):
         report_infeasible(self, "unloaded", unloaded,
                           "no station can be loaded (hover: lambda <= V_theta C_d*/(2 C_l*) at every station), "
                           "so the rotor has zero torque: increase ref_chord or rpm, or use an airfoil with a "
-                          "higher maximum L/D", details)
+                          "higher maximum L/D", details, light=True)
         return unloaded
 
     def compute(self, inputs, outputs):

@@ -114,6 +114,15 @@ def _time_singles(out, run, repeats, budget=120.0):
     out.time_per_design[timed] = best[timed]
 
 
+def _value_or_nan(prob, name, size):
+    """``prob``'s output ``name``, or NaN where the model has none (the reference station's point of the
+    Reynolds-aware exact loading, which with a thrust target solves lambda without a reference station)."""
+    try:
+        return prob.get_val(name).copy()
+    except KeyError:
+        return np.full(size, np.nan)
+
+
 def bild_designs(cases, section_point="reference", repeats=3, thrust=None, ideal_loading="paper"):
     """BILD designs of ``cases``: one batched run (failing cases isolated by bisection), then each alone, timed.
 
@@ -133,7 +142,8 @@ def bild_designs(cases, section_point="reference", repeats=3, thrust=None, ideal
     Returns
     -------
     MethodDesigns
-        ``extra``: ``thrust`` (N), ``ref_chord`` (m) and the reference station's ``alpha_star, cl_star, cd_star``.
+        ``extra``: ``thrust`` (N), ``ref_chord`` (m) and the reference station's ``alpha_star, cl_star, cd_star``
+        (NaN for the Reynolds-aware exact loading with ``thrust``: it has no reference station then).
     """
     num_radial, num_blades, airfoil = _configuration(cases)
     out = _empty(len(cases), num_radial, ("thrust",) + _BILD_POINT + ("ref_chord",))
@@ -148,7 +158,7 @@ def bild_designs(cases, section_point="reference", repeats=3, thrust=None, ideal
         _set_bild_inputs(prob, [cases[i] for i in part], None if thrust is None else thrust[part])
         start = time.perf_counter()
         prob.run_model()
-        return (time.perf_counter() - start, [prob.get_val(name).copy() for name in names],
+        return (time.perf_counter() - start, [_value_or_nan(prob, name, part.size) for name in names],
                 prob.get_val("chord", units="m").copy(), prob.get_val("twist", units="rad").copy())
 
     out.errors.update({int(i): "no thrust target" for i in np.setdiff1d(np.arange(len(cases)), usable)})

@@ -53,3 +53,16 @@ def test_unloaded_hover_node_gets_finite_placeholder_loads():
     np.testing.assert_array_equal(ledger.infeasible, np.arange(NN) == 0)
     np.testing.assert_array_equal(prob.get_val("dtorque_dr")[0], np.ones(NR))
     assert np.all(prob.get_val("dtorque_dr")[1:] > 0.0)
+
+
+def test_light_nodes_fail_only_checks_that_ask_for_a_larger_chord():
+    # FeasibilityLedger.light: a thrust-target solve searches above such a node, so a node that also fails a
+    # check asking for a smaller chord (or another change) is not light.
+    ledger = FeasibilityLedger(4)
+    ledger.record("unloaded", [True, True, False, False], "no station loaded: raise ref_chord", {}, light=True)
+    ledger.record("overloaded", [False, True, True, False], "overloaded: reduce ref_chord", {})
+    np.testing.assert_array_equal(ledger.light, [True, False, False, False])
+    np.testing.assert_array_equal(ledger.infeasible, [True, True, True, False])
+    # A check recorded again without the flag is no longer light.
+    ledger.record("unloaded", [True, False, False, False], "no station loaded", {})
+    np.testing.assert_array_equal(ledger.light, [False, False, False, False])

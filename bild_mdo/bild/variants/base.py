@@ -70,6 +70,9 @@ class BILDVariant:
         """Whether every station has its own section point (``cl_star`` etc. of shape ``[nn, nr]``)."""
         raise NotImplementedError
 
+    #: What ``BILDGroup(thrust_target=True)`` solves for the thrust (:data:`bild_mdo.bild.thrust_target.STATES`).
+    thrust_target_state = "ref_chord"
+
     def check_polar(self):
         """Raise ValueError with one line where the member cannot use the group's polar."""
 

@@ -118,6 +118,12 @@ def test_thrust_target_local_design(ideal_loading):
     prob.set_val("v_axial", [0.0, 15.0])
     prob.set_val("thrust_target", [900.0, 700.0])
     prob.run_model()
+    # The Reynolds-aware exact loading solves lambda and reports the stations' chord at r_ref as ref_chord: with
+    # r_ref on a station (the fourth) that is the station's chord, whose design is the same (the reference state
+    # is a station's ideal load at r_ref, reference_solve's docstring).
+    ratio = prob.get_val("radii")[:, 3] / prob.get_val("radius") if ideal_loading == "exact" else np.full(2, 0.5)
+    prob.set_val("ref_radius_ratio", ratio)
+    prob.run_model()
     # The solve's tolerance is 1e-12 in ln T (ThrustTargetComp): met as tightly as with the paper's BILD.
     np.testing.assert_allclose(prob.get_val("thrust"), [900.0, 700.0], rtol=2e-12)
     # The thrust-target design is the design at the chord it found.
@@ -126,6 +132,7 @@ def test_thrust_target_local_design(ideal_loading):
                         reports=False)
     direct.setup()
     direct.set_val("v_axial", [0.0, 15.0])
+    direct.set_val("ref_radius_ratio", ratio)
     direct.set_val("ref_chord", chord)
     direct.run_model()
     np.testing.assert_allclose(direct.get_val("chord"), prob.get_val("chord"), rtol=1e-9, atol=1e-14)

@@ -82,3 +82,35 @@ def test_reference_state_does_not_depend_on_the_batch():
         alone.run_model()
         for name in ("phi_ref", "alpha_star_ref", "cl_star_ref", "cd_star_ref", "ideal_loading_constant"):
             np.testing.assert_array_equal(alone.get_val(name)[0], prob.get_val(name)[node])
+
+
+def test_a_chord_below_the_lightest_ideal_load_is_infeasible():
+    # The definition of the reference point (reference_solve's docstring): a station placed at r_ref, solved at
+    # the reference's own lambda, takes the reference state.  On the paper's hover rotor (the BILDGroup defaults)
+    # with the NACA 4412 surrogate, reference chords of 1-2.5 cm put the reference state where lambda falls as
+    # the chord grows or where loading the annulus saves less than leaving it unloaded (Phi >= 0): the station
+    # at r_ref then takes a load ten times heavier (phi ~0.48 against ~0.05 rad), so the design is not the one
+    # c_ref names.  Those, and only those, are infeasible with the lightest-load reason.
+    from bild_mdo.bild import BILDGroup
+    from bild_mdo.bild.variants.local_point.reference import LIGHTEST_LOAD
+    from bild_mdo.bild.variants.local_point.reference_solve import station_flow
+    from bild_mdo.bild.variants.reynolds_exact.solve import solve_stations
+
+    chords = np.geomspace(0.01, 0.5, 40)
+    prob = om.Problem(BILDGroup(num_nodes=chords.size, num_radial=8, polar=default_polar(), section_point="local",
+                                ideal_loading="exact", on_infeasible="flag"), reports=False)
+    prob.setup()
+    prob.set_val("ref_chord", chords)
+    prob.run_model()
+    comp = prob.model.reference_point
+    solution = comp._cache["solution"]
+    at_r_ref = solve_stations(comp.table, station_flow(comp._flow(comp._inputs))._replace(
+        lam=prob.get_val("ideal_loading_constant")))
+    light = prob.model.feasibility.status() == LIGHTEST_LOAD
+    assert 5 <= np.sum(light) and np.all(chords[light] < 0.025) and np.all(prob.get_val("feasible")[chords > 0.025])
+    assert np.all(np.abs(at_r_ref.phi[light] - solution.phi[light]) > 0.1)
+    # The two criteria agree where the station takes the reference's sheet: the same state, to round-off.
+    same = ~light & (at_r_ref.label == solution.label) & solution.on_table
+    assert np.sum(same) >= 20
+    np.testing.assert_allclose(at_r_ref.phi[same], solution.phi[same], rtol=0.0, atol=1e-10)
+    assert np.all(prob.model.feasibility.light[light])

@@ -104,16 +104,16 @@ def check_reference_annulus(component, inputs, numerator, denominator, method, m
     details = {"phi_ref [deg]": np.degrees(phi), "v_axial [m/s]": v_x, "v_theta_ref [m/s]": v_t}
     checks = (
         (np.isfinite(d) & np.isfinite(n) & (v_x >= 0.0) & (v_t > 0.0), "finite",
-         "the reference annulus is not finite (V_x >= 0 and V_theta_ref > 0 are needed)"),
+         "the reference annulus is not finite (V_x >= 0 and V_theta_ref > 0 are needed)", False),
         (phi > unloaded_angle(v_x, v_t), "thrust",
-         "the reference station must produce thrust (phi_ref > atan(V_x/V_theta_ref)); raise ref_chord or rpm"),
+         "the reference station must produce thrust (phi_ref > atan(V_x/V_theta_ref)); raise ref_chord or rpm", True),
         (d > 0.0, "below_maximum_thrust",
          f"the reference station is loaded past its maximum annulus thrust {maximum}, where the {method} "
-         "does not exist; reduce ref_chord or the advance ratio"),
+         "does not exist; reduce ref_chord or the advance ratio", False),
     )
     failed = np.zeros(phi.shape, dtype=bool)
-    for ok, key, reason in checks:
+    for ok, key, reason, light in checks:
         bad = ~ok & ~failed
-        report_infeasible(component, key, bad, f"{method}: {reason}", details)
+        report_infeasible(component, key, bad, f"{method}: {reason}", details, light=light)
         failed |= bad
     return failed

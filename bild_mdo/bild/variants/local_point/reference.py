@@ -20,6 +20,11 @@ _INPUT_KEYS = {"v_axial": "v_axial", "v_theta_ref": "v_theta", "ref_radius": "r"
 _POINT = ("alpha_star_ref", "cl_star_ref", "cd_star_ref")
 _REYNOLDS_INPUTS = ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu")
 _RE_ONLY = ("alpha_star_ref", "cl_star_ref", "cd_star_ref", "reynolds_ref")
+#: Why a reference chord below the lightest ideal load of its station is infeasible (exact loading).
+LIGHTEST_LOAD = ("Reynolds-aware exact ideal loading: ref_chord is below the lightest ideal load of the reference "
+                 "station (there its marginal energy loss per thrust, lambda, falls as the chord grows, or loading "
+                 "the annulus saves less than leaving it unloaded, so no station at r_ref takes that chord); raise "
+                 "ref_chord")
 
 
 class LocalReferenceComp(om.ExplicitComponent):
@@ -118,8 +123,32 @@ class LocalReferenceComp(om.ExplicitComponent):
             states = {"phi_ref": solution.phi, "v_axial": ref.v_axial, "v_theta_ref": ref.v_theta}
             failed = check_reference_annulus(self, states, values["lambda_n"], values["lambda_d"],
                                              "Reynolds-aware exact ideal loading", "D_tot = 0")
-            self._cache["lam_failed"] = failed | ~solution.ok
+            light = ~failed & self._below_lightest_load(ref, solution, values)
+            report_infeasible(self, "lightest_load", light, LIGHTEST_LOAD,
+                              {"ref_chord [m]": ref.chord, "Re_ref": reference_reynolds(ref),
+                               "lambda [m/s]": values["ideal_loading_constant"]}, light=True)
+            self._cache["lam_failed"] = failed | light | ~solution.ok
         return self._cache
+
+    def _below_lightest_load(self, ref, solution, values):
+        """Nodes whose reference state is no ideal load of a station at ``r_ref`` at its own lambda (exact
+        loading).  On the table: the residual ``N_tot/D_tot - lambda`` does not rise through the state (lambda
+        falls as ``c_ref`` grows) or its ``Phi = F (e - lambda t)`` is not below the unloaded 0.  In the Reynolds
+        gap (where the state is a maximum along its path, and lambda may fall with ``c_ref``): ``Phi`` not below
+        0, or a load coordinate ``ln(Re cl)`` below the table's lightest (which stations leave unloaded)."""
+        ok = solution.ok & np.isfinite(values["ideal_loading_constant"])
+        with np.errstate(invalid="ignore"):
+            light = ok & solution.on_table & ~((solution.slope > 0.0) & (solution.objective < 0.0))
+        gap = np.flatnonzero(ok & ~solution.on_table)
+        if gap.size:
+            sub = take_reference(ref, gap)
+            reynolds = reference_reynolds(sub)
+            item = terms(self.options["polar"], solution.phi[gap], solution.alpha[gap], reynolds,
+                         station_flow(sub)._replace(lam=values["ideal_loading_constant"][gap]))
+            with np.errstate(all="ignore"):
+                below = np.log(reynolds * values["cl_star_ref"][gap]) < self.table.x_first
+                light[gap] = below | ~(np.real(item.objective.v) < 0.0)
+        return light
 
     def _values(self, ref, solution):
         """The outputs at the solved states (values only; the Reynolds gap through its jets)."""

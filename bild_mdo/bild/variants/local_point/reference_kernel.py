@@ -103,9 +103,11 @@ def reference_all(table, extra, consts, guess, ell_ref, torque, loss, settings, 
     """Solve every design's reference station (module docstring).
 
     ``consts[n, 5]``: ``ln K, k_tip, k_hub, V_x, V_theta``; ``settings``: ``(passes, tol, phi_step, x_step)``.
-    Writes ``out[n, 8]``: ``phi, x0, s, alpha, label, on_table, N_tot, D_tot`` (``on_table`` 0 where no sheet
-    covers ``Re_ref``, or where the table has only maxima there and a sheet passes ``Re_ref`` in the cells it
-    leaves out next to a fold: the caller solves those on the polar).
+    Writes ``out[n, 10]``: ``phi, x0, s, alpha, label, on_table, N_tot, D_tot, slope, Phi`` (``on_table`` 0 where
+    no sheet covers ``Re_ref``, or where the table has only maxima there and a sheet passes ``Re_ref`` in the
+    cells it leaves out next to a fold: the caller solves those on the polar; ``slope`` the ``d(N_tot/D_tot)/dphi``
+    of a station's residual there and ``Phi`` its ``F (e - lambda t)`` at ``lambda = N_tot / D_tot``: the state
+    is the ideal load of a station at ``r_ref`` only where ``slope > 0`` and ``Phi < 0``).
     """
     coef, _, cover_first, cover_last, offset, kind, _, _, _, grid, _, _ = table
     coef_ell, coef_alpha, run_label, run_start, run_stop, run_x0, run_ell = extra
@@ -149,3 +151,8 @@ def reference_all(table, extra, consts, guess, ell_ref, torque, loss, settings, 
         tr = trial_one(coef, x_first, low, high, off, kind[best_label], log_k, k_tip, k_hub, vx, vt, 0.0, best_phi,
                        best_x0, torque, loss)
         row[6], row[7] = tr[3] * tr[5], tr[5]
+        # The station's own test of a loaded root (f rising through 0, Phi below the unloaded 0) at lambda_ref.
+        lam = tr[3]
+        tr = trial_one(coef, x_first, low, high, off, kind[best_label], log_k, k_tip, k_hub, vx, vt, lam, best_phi,
+                       best_x0, torque, loss)
+        row[8], row[9] = tr[4], tr[8]

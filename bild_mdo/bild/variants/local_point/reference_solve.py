@@ -80,7 +80,10 @@ def station_flow(ref):
 class ReferenceSolution(NamedTuple):
     """Per design: ``phi``, ``x0``, ``s``, ``alpha`` and the sheet ``label`` (table states), ``on_table``
     (False: no sheet covers ``Re_ref``, exact states ``phi, alpha``), ``ok`` (a converged state) and, on the
-    table, ``N_tot, D_tot`` of the reference annulus (the exact loading's lambda is their ratio)."""
+    table, ``N_tot, D_tot`` of the reference annulus (the exact loading's lambda is their ratio), and a station's
+    test of that state as its own ideal load at lambda: ``slope``, ``d(N_tot/D_tot)/dphi`` along the path (> 0:
+    a minimum of ``Phi``), and ``objective``, ``Phi = F (e - lambda t)`` (< 0: better than no load); NaN off the
+    table."""
 
     phi: np.ndarray
     x0: np.ndarray
@@ -91,6 +94,8 @@ class ReferenceSolution(NamedTuple):
     ok: np.ndarray
     n_tot: np.ndarray
     d_tot: np.ndarray
+    slope: np.ndarray
+    objective: np.ndarray
 
 
 def first_angle(ref):
@@ -111,7 +116,7 @@ def solve_reference(table, polar, ref):
     guess = first_angle(ref)
     c = constants(station_flow(ref))
     k_hub = c.k_hub if c.k_hub is not None else np.ones(n)
-    out = np.empty((n, 8))
+    out = np.full((n, 10), np.nan)
     if not hasattr(table, "_reference_arrays"):
         table._reference_arrays = reference_arrays(table)
     with np.errstate(all="ignore"):
@@ -129,7 +134,7 @@ def solve_reference(table, polar, ref):
     if gap.size:
         phi_g, alpha_g, ok_g = gap_solve(polar, take_reference(ref, gap), guess[gap])
         phi[gap], alpha[gap], ok[gap] = phi_g, alpha_g, ok_g
-    return ReferenceSolution(phi, x0, s, alpha, label, on_table, ok, out[:, 6], out[:, 7])
+    return ReferenceSolution(phi, x0, s, alpha, label, on_table, ok, out[:, 6], out[:, 7], out[:, 8], out[:, 9])
 
 
 def table_jets(table, ref, phi, x0, label):
