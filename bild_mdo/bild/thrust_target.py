@@ -125,6 +125,7 @@ class ThrustTargetComp(om.ImplicitComponent):
         self.add_output(self._state, val=np.full(nn, start), units=units, lower=0.0, desc=desc)
         # d ln T / d ln c_ref of each design, kept across solves (the first step of the next solve uses it).
         self._slope = np.ones(nn)
+        self._parked = None  # a new set-up has no parked designs (and no outputs to reset yet)
         self.start()
 
     def setup_partials(self):

@@ -44,7 +44,10 @@ class LocalReferenceComp(om.ExplicitComponent):
 
     A node whose reference state cannot be solved, or whose reference annulus
     is past its maximum thrust (exact loading), is infeasible (placeholders,
-    zero partials).
+    zero partials); with the exact loading so is a reference chord below the
+    lightest ideal load of its station (:data:`LIGHTEST_LOAD`: a station at
+    ``r_ref`` would not take the state, so the design is not that chord's),
+    a light infeasibility (:attr:`~bild_mdo.bild.feasibility.FeasibilityLedger.light`).
 
     Options: ``num_nodes``, ``num_blades``, ``loss_model``, ``chord_form``, ``polar``, ``feasibility``,
     ``ideal_loading`` (``'paper'``: no lambda output; ``'exact'``).
