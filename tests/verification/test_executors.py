@@ -16,12 +16,16 @@ def test_in_process_runs_in_order_and_propagates():
 
 
 def test_process_pool_yields_in_completion_order(tmp_path):
-    # The first task cannot finish before the second has run (it waits for the file the second
-    # creates), so with two workers the results must come back second-first.
-    marker = str(tmp_path / "fast-done")
-    tasks = [("slow", ("S", marker, None)), ("fast", ("F", None, marker))]
-    results = list(run_tasks(standins.echo_after_file, tasks, workers=2))
-    assert results == [("fast", "F", None), ("slow", "S", None)]
+    # The first task cannot finish before this process has received a result: it waits for a file
+    # created only then.  So with two workers the second task's result must come back first.  (A file
+    # created by the second task itself left a race: the first could return before the second's
+    # result reached this process.)
+    marker = str(tmp_path / "first-result-received")
+    tasks = [("slow", ("S", marker, None)), ("fast", ("F", None, None))]
+    results = run_tasks(standins.echo_after_file, tasks, workers=2)
+    first = next(results)
+    open(marker, "w").close()
+    assert [first, *results] == [("fast", "F", None), ("slow", "S", None)]
 
 
 def test_exceptions_in_workers_are_reported_not_raised():
