@@ -116,24 +116,25 @@ class LocalReferenceComp(om.ExplicitComponent):
             return self._cache
         ref = self._flow(inputs)
         solution = solve_reference(self.table, self.options["polar"], ref)
+        re_ref = reference_reynolds(ref)
         report_infeasible(self, "reference_point", ~solution.ok,
                           "local section point: the reference station's BEM state at its own section point did not "
                           "converge (check ref_chord and the operating point)",
-                          {"ref_chord [m]": ref.chord, "Re_ref": reference_reynolds(ref)})
+                          {"ref_chord [m]": ref.chord, "Re_ref": re_ref})
         values = self._values(ref, solution)
         self._cache = {"key": key, "solution": solution, "values": values, "linear": None}
         if self.options["ideal_loading"] == "exact":
             states = {"phi_ref": solution.phi, "v_axial": ref.v_axial, "v_theta_ref": ref.v_theta}
             failed = check_reference_annulus(self, states, values["lambda_n"], values["lambda_d"],
                                              "Reynolds-aware exact ideal loading", "D_tot = 0")
-            light = ~failed & self._below_lightest_load(ref, solution, values)
+            light = ~failed & self._below_lightest_load(ref, re_ref, solution, values)
             report_infeasible(self, "lightest_load", light, LIGHTEST_LOAD,
-                              {"ref_chord [m]": ref.chord, "Re_ref": reference_reynolds(ref),
+                              {"ref_chord [m]": ref.chord, "Re_ref": re_ref,
                                "lambda [m/s]": values["ideal_loading_constant"]}, light=True)
             self._cache["lam_failed"] = failed | light | ~solution.ok
         return self._cache
 
-    def _below_lightest_load(self, ref, solution, values):
+    def _below_lightest_load(self, ref, re_ref, solution, values):
         """Nodes whose reference state is no ideal load of a station at ``r_ref`` at its own lambda (exact
         loading).  On the table: the residual ``N_tot/D_tot - lambda`` does not rise through the state (lambda
         falls as ``c_ref`` grows) or its ``Phi = F (e - lambda t)`` is not below the unloaded 0.  In the Reynolds
@@ -145,7 +146,7 @@ class LocalReferenceComp(om.ExplicitComponent):
         gap = np.flatnonzero(ok & ~solution.on_table)
         if gap.size:
             sub = take_reference(ref, gap)
-            reynolds = reference_reynolds(sub)
+            reynolds = re_ref[gap]
             item = terms(self.options["polar"], solution.phi[gap], solution.alpha[gap], reynolds,
                          station_flow(sub)._replace(lam=values["ideal_loading_constant"][gap]))
             with np.errstate(all="ignore"):
