@@ -9,6 +9,7 @@ from bild_mdo.bild.variants.exact.exact_ideal_loading import check_reference_ann
 from bild_mdo.bild.feasibility import report_infeasible
 from bild_mdo.bild.variants.local_point.gap import force_factors, gap_jets, reference_reynolds, take_reference, terms
 from bild_mdo.bild.variants.local_point.options import declare_local_options
+from bild_mdo.bild.variants.local_point.partials_kernel import DIRECTIONS, state_totals
 from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, station_flow, table_jets
 from bild_mdo.utils.jet import Jet, eliminate, jacobian, variable
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
@@ -20,6 +21,10 @@ _INPUT_KEYS = {"v_axial": "v_axial", "v_theta_ref": "v_theta", "ref_radius": "r"
 _POINT = ("alpha_star_ref", "cl_star_ref", "cd_star_ref")
 _REYNOLDS_INPUTS = ("v_axial", "v_theta_ref", "ref_chord", "rho", "mu")
 _RE_ONLY = ("alpha_star_ref", "cl_star_ref", "cd_star_ref", "reynolds_ref")
+#: Outputs of a table state -> their quantity in the compiled model (partials_kernel.QUANTITIES).
+_TABLE_QUANTITIES = {"phi_ref": "phi", "alpha_star_ref": "alpha_star", "cl_star_ref": "cl_star",
+                     "cd_star_ref": "cd_star", "load_reynolds_ref": "load_reynolds",
+                     "ideal_loading_constant": "lambda_ratio"}
 #: Why a reference chord below the lightest ideal load of its station is infeasible (exact loading).
 LIGHTEST_LOAD = ("Reynolds-aware exact ideal loading: ref_chord is below the lightest ideal load of the reference "
                  "station (there its marginal energy loss per thrust, lambda, falls as the chord grows, or loading "
@@ -188,8 +193,18 @@ class LocalReferenceComp(om.ExplicitComponent):
         n = ref.r.size
         keys = list(_INPUT_KEYS.values())
         partials = {(out, wrt): np.zeros(n) for out in self._output_names for wrt in keys}
-        for at, jets_of in ((np.flatnonzero(solution.on_table & solution.ok), self._table_jets),
-                            (np.flatnonzero(~solution.on_table & solution.ok), self._gap_jets)):
+        at = np.flatnonzero(solution.on_table & solution.ok)
+        if at.size:  # on the table: the compiled model (partials_kernel), the same as _table_jets
+            outputs = [name for name in self._output_names if name in _TABLE_QUANTITIES]
+            points = np.column_stack([solution.phi[at], solution.x0[at], np.zeros(at.size)]
+                                     + [getattr(ref, name)[at] for name in DIRECTIONS[3:]])
+            totals = state_totals(self.table, points, solution.label[at], ref.num_blades, ref.chord_form == "torque",
+                                  ref.loss_model, ("r2", "r_ell"), keys,
+                                  [_TABLE_QUANTITIES[name] for name in outputs])
+            for i, out in enumerate(outputs):
+                for j, k in enumerate(keys):
+                    partials[out, k][at] = totals[:, i, j]
+        for at, jets_of in ((np.flatnonzero(~solution.on_table & solution.ok), self._gap_jets),):
             if at.size == 0:
                 continue
             residuals, states, outputs, _ = jets_of(take_reference(ref, at), solution, at)

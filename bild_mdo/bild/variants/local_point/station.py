@@ -217,10 +217,16 @@ class LocalStationComp(om.ExplicitComponent):
             outputs[name] = values[name].reshape(shape)
         outputs["section_branch"] = cache["label"].reshape(shape).astype(float)
 
+    def _totals(self, inputs, cache):
+        """``(at, totals[at, OUTPUTS, INPUTS])``: the partials of the outputs at the loaded stations ``at``, the
+        states eliminated (here from the jets of :meth:`_linear`)."""
+        at, _, _, _, totals = self._linear(inputs, cache)
+        return at, totals
+
     def compute_partials(self, inputs, partials):
         cache = self._solve(inputs)
         n = cache["label"].size
-        at, _, _, _, totals = self._linear(inputs, cache)
+        at, totals = self._totals(inputs, cache)
         if at.size != n:  # zero partials at the stations without a load
             full = np.zeros((n,) + totals.shape[1:])
             full[at] = totals

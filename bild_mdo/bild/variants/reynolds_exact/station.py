@@ -1,8 +1,10 @@
 """ReynoldsStationComp: every station of the Reynolds-aware exact ideal loading, solved on its own given lambda."""
+import numpy as np
 
-from bild_mdo.bild.variants.local_point.load_path_model import station_jets
+from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, station_jets, take
 from bild_mdo.bild.variants.local_point.options import station_failures
-from bild_mdo.bild.variants.local_point.station import LocalStationComp
+from bild_mdo.bild.variants.local_point.partials_kernel import state_totals
+from bild_mdo.bild.variants.local_point.station import OUTPUTS, LocalStationComp
 from bild_mdo.bild.variants.reynolds_exact.solve import LOADED, solve_stations
 
 
@@ -19,7 +21,9 @@ class ReynoldsStationComp(LocalStationComp):
     load_reynolds = 0``), ``section_branch = -1``, a placeholder section point
     and zero partials; an overloaded station, a failed solve or a load Reynolds
     number past :data:`~bild_mdo.airfoil.load_path_table.REYNOLDS_SPAN` times the
-    polar's data is infeasible.  Outputs, options and the rest:
+    polar's data is infeasible.  Its partials come from the compiled model
+    (:mod:`~bild_mdo.bild.variants.local_point.partials_kernel`), its
+    complex-step path from the jets.  Outputs, options and the rest:
     :class:`~bild_mdo.bild.variants.local_point.station.LocalStationComp`.
     """
 
@@ -39,3 +43,14 @@ class ReynoldsStationComp(LocalStationComp):
         outputs = {"eta2": jets.eta2, "alpha_star": jets.alpha, "cl_star": jets.cl, "cd_star": jets.cd,
                    "reynolds": jets.reynolds, "load_reynolds": jets.load_reynolds}
         return (jets.r1, jets.r2), ("phi", "x0"), outputs
+
+    def _totals(self, inputs, cache):
+        if cache.get("totals") is None:
+            at = np.flatnonzero(cache["status"] == self.LOADED)
+            flow = take(self._flow(inputs), at)
+            points = np.column_stack([cache["states"][0][at], cache["states"][1][at]]
+                                     + [getattr(flow, name) for name in INPUTS] + [np.ones(at.size)])
+            cache["totals"] = (at, state_totals(self.table, points, cache["label"][at], flow.num_blades,
+                                                flow.chord_form == "torque", flow.loss_model, ("r1", "r2"), INPUTS,
+                                                OUTPUTS))
+        return cache["totals"]
