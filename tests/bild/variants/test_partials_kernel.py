@@ -1,5 +1,8 @@
 """The compiled partials of the load-path model (partials_kernel) against the jets of load_path_model.
 
+Both local-point variants: the Reynolds-aware exact loading (states phi, x0) and the paper's loading with the
+local point (state x0, phi the quartic's), and the reference station on the table.
+
 Source: the jets (:class:`~bild_mdo.utils.jet.Jet`, forward-mode derivatives of the same model, themselves
 checked against complex step in test_local_stations and test_local_reference) and
 :func:`~bild_mdo.bem.prandtl.prandtl_loss_jet` for Prandtl's factor.  The compiled model is a second,
@@ -10,8 +13,11 @@ import pytest
 
 from bild_mdo.airfoil.load_path_table import load_path_table
 from bild_mdo.bem.prandtl import prandtl_loss_jet
+from bild_mdo.bild.variants.local_paper.solve import LOADED as PAPER_LOADED
+from bild_mdo.bild.variants.local_paper.solve import paper_jets
+from bild_mdo.bild.variants.local_paper.solve import solve_stations as solve_paper
 from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
-from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, station_jets, take
+from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, section_jets, station_jets, take
 from bild_mdo.bild.variants.local_point.partials_kernel import prandtl_partials_one, state_totals
 from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, table_jets
 from bild_mdo.bild.variants.local_point.station import OUTPUTS
@@ -88,4 +94,27 @@ def test_reference_totals_are_those_of_the_jets(chord_form):
                               sub.radius, sub.hub_radius, sub.rho, sub.mu, sub.chord])
     compiled = state_totals(table, points, sol.label[at], 3, chord_form == "torque", "tip_hub", ("r2", "r_ell"), keys,
                             ("alpha_star", "cl_star", "cd_star", "load_reynolds", "lambda_ratio"))
+    assert _relative_error(compiled, reference) < 1e-10
+
+
+@pytest.mark.parametrize("loss_model", ["tip", "tip_hub"])
+@pytest.mark.parametrize("chord_form", ["thrust", "torque"])
+def test_paper_loading_station_totals_are_those_of_the_jets(chord_form, loss_model):
+    # The local point with the paper's loading: one state x0, phi and eta2 from the quartic (27) at s(x0).
+    table = load_path_table(default_polar())
+    flow = _flow(60, chord_form, loss_model)
+    sol = solve_paper(table, flow)
+    at = np.flatnonzero(sol.status == PAPER_LOADED)
+    assert at.size > 30
+    sub, x0, label = take(flow, at), sol.x0[at], sol.label[at]
+    jets = paper_jets(table, sub, x0, label)
+    alpha, cl, cd, reynolds, load = section_jets(table, label, jets.x0, jets.s, jets.ring.tau)
+    outputs = {"eta2": jets.eta2, "alpha_star": alpha, "cl_star": cl, "cd_star": cd, "reynolds": reynolds,
+               "load_reynolds": jets.ring.p * load}
+    sens = -np.linalg.solve(jacobian((jets.r,), ("x0",), at.size), jacobian((jets.r,), INPUTS, at.size))
+    reference = eliminate((outputs[name] for name in OUTPUTS), ("x0",), INPUTS, sens, at.size)
+    points = np.column_stack([np.zeros(at.size), x0, *(getattr(sub, name) for name in INPUTS), np.ones(at.size)])
+    compiled = state_totals(table, points, label, sub.num_blades, chord_form == "torque", loss_model, ("r2",), INPUTS,
+                            OUTPUTS, paper=True)
+    assert np.all(np.isfinite(compiled))
     assert _relative_error(compiled, reference) < 1e-10

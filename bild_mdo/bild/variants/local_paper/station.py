@@ -1,8 +1,11 @@
 """LocalPaperStationComp: the paper's ideal loading with each station's own section point, solved per station."""
+import numpy as np
+
 from bild_mdo.bild.variants.local_paper.solve import LOADED, paper_jets, solve_stations
-from bild_mdo.bild.variants.local_point.load_path_model import section_jets
+from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, section_jets, take
 from bild_mdo.bild.variants.local_point.options import station_failures
-from bild_mdo.bild.variants.local_point.station import LocalStationComp
+from bild_mdo.bild.variants.local_point.partials_kernel import state_totals
+from bild_mdo.bild.variants.local_point.station import OUTPUTS, LocalStationComp
 
 
 class LocalPaperStationComp(LocalStationComp):
@@ -14,8 +17,10 @@ class LocalPaperStationComp(LocalStationComp):
     state ``x0`` and one residual ``R`` per station, in the model of the
     polar's load-path table).  A station that the quartic leaves unloaded
     (hover) gets ``eta2 = 1`` and zero chord, ``section_branch = -1``, a
-    placeholder section point and zero partials.  Outputs, options and the
-    rest: :class:`~bild_mdo.bild.variants.local_point.station.LocalStationComp`.
+    placeholder section point and zero partials.  Its partials come from the
+    compiled model (:mod:`~bild_mdo.bild.variants.local_point.partials_kernel`),
+    its complex-step path from the jets.  Outputs, options and the rest:
+    :class:`~bild_mdo.bild.variants.local_point.station.LocalStationComp`.
     """
 
     METHOD = "local section point"
@@ -32,3 +37,14 @@ class LocalPaperStationComp(LocalStationComp):
         outputs = {"eta2": jets.eta2, "alpha_star": alpha, "cl_star": cl, "cd_star": cd, "reynolds": reynolds,
                    "load_reynolds": jets.ring.p * load}
         return (jets.r,), ("x0",), outputs
+
+    def _totals(self, inputs, cache):
+        if cache.get("totals") is None:
+            at = np.flatnonzero(cache["status"] == self.LOADED)
+            flow = take(self._flow(inputs), at)
+            points = np.column_stack([np.zeros(at.size), cache["states"][0][at]]
+                                     + [getattr(flow, name) for name in INPUTS] + [np.ones(at.size)])
+            cache["totals"] = (at, state_totals(self.table, points, cache["label"][at], flow.num_blades,
+                                                flow.chord_form == "torque", flow.loss_model, ("r2",), INPUTS,
+                                                OUTPUTS, paper=True))
+        return cache["totals"]

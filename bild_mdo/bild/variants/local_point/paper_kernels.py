@@ -132,8 +132,23 @@ def _taylor_start(vx, vt, lam, s):
 @kernel
 def paper_angle_one(work, vx, vt, lam, s):
     """The paper loading's inflow angle at ``cd/cl = s`` (``work``: a float array of one element, the caller's,
-    so that no call allocates): ``eta2`` of the quartic (27) on ``[1/2, 1]``, ``u_axial`` from Eq. (26), ``phi = atan2(u_axial, eta2 V_theta)``; NaN where the quartic has no
-    root below 1 (an unloaded station)."""
+    so that no call allocates): ``eta2`` of the quartic (27) on ``[1/2, 1]`` (:func:`paper_eta_one`),
+    ``u_axial`` from Eq. (26), ``phi = atan2(u_axial, eta2 V_theta)``; NaN where the quartic has no root below 1
+    (an unloaded station)."""
+    eta = paper_eta_one(work, vx, vt, lam, s)
+    if not eta < 1.0:
+        return math.nan
+    b = 0.5 * (vx - vt * s)
+    c = eta * vt * (vt * (1.0 - eta) + vx * s)
+    root = math.sqrt(b * b + c)
+    u_axial = b + root if b >= 0.0 else c / (root - b)
+    return math.atan2(u_axial, eta * vt)
+
+
+@kernel
+def paper_eta_one(work, vx, vt, lam, s):
+    """``eta2`` of the quartic (27) on ``[1/2, 1]`` at ``cd/cl = s`` to :data:`FIRST_TOL` (NaN where it has no
+    root below 1)."""
     # The bracket ends in closed form (bild_mdo.bild.variants.paper.eta2._solve_tail); the root from the Taylor model of
     # bild_mdo.bild.variants.paper.eta2._solve where its Newton steps have converged, else the bracketed solve from
     # there (by false position where it lies outside the bracket).
@@ -152,8 +167,4 @@ def paper_angle_one(work, vx, vt, lam, s):
         eta, converged, _, _, _ = _quartic_root(work, (vx, vt, lam, s), 0.5, 1.0, 1.0, start, 100, FIRST_TOL)
         if not converged or eta >= 1.0:
             return math.nan
-    b = 0.5 * (vx - vt * s)
-    c = eta * vt * (vt * (1.0 - eta) + vx * s)
-    root = math.sqrt(b * b + c)
-    u_axial = b + root if b >= 0.0 else c / (root - b)
-    return math.atan2(u_axial, eta * vt)
+    return eta

@@ -33,6 +33,7 @@ import numpy as np
 from bild_mdo.airfoil.load_path_table import X_STEP
 from bild_mdo.bem.prandtl import EXPONENT_MAX, EXPONENT_MIN, SIN_PHI_FLOOR
 from bild_mdo.bild.variants.local_point.kernels import _ATAN_EXPONENT, _SERIES_EXPONENT, _series_value, lookup
+from bild_mdo.bild.variants.local_point.paper_kernels import _quartic_value, paper_eta_one
 from bild_mdo.utils.compiled import kernel
 
 #: Directions of the tangents (columns 1.. of :func:`model_one`'s output) and the rows of the inputs array.
@@ -130,18 +131,56 @@ def _cubic(coef, x_first, low, high, offset, x0):
 
 
 @kernel
-def model_one(coef_s, coef_ell, coef_alpha, x_first, low, high, offset, point, num_blades, torque, loss, out):
+def _quartic_partials(eta, vx, vt, lam, s):
+    """``dP/d(eta, V_x, V_theta, lam, s)`` of the quartic (27) in its product form ``N**2 - 2 b N M - c M**2``
+    (the formulas of :func:`bild_mdo.bild.variants.paper.quartic.quartic_and_partials`, for one station)."""
+    n_term = 2.0 * s * eta * vx * vt + vx * (2.0 * eta - 1.0) * (lam + vx) + vt * vt * (1.0 - eta) * (4.0 * eta - 1.0)
+    m_term = 2.0 * s * vt - vx + (2.0 * eta - 1.0) * (2.0 * lam + 2.0 * vx)
+    b = 0.5 * (vx - s * vt)
+    c = eta * vt * (s * vx + vt * (1.0 - eta))
+    fn, fm, fb, fc = 2.0 * (n_term - b * m_term), -2.0 * (b * n_term + c * m_term), -2.0 * n_term * m_term, \
+        -m_term * m_term
+    p_eta = fn * (2.0 * s * vx * vt + 2.0 * vx * (lam + vx) + 4.0 * vt * vt * (1.0 - eta) - vt * vt * (4.0 * eta - 1.0)) \
+        + fm * (4.0 * lam + 4.0 * vx) + fc * (-eta * vt * vt + vt * (s * vx + vt * (1.0 - eta)))
+    p_vx = fn * (2.0 * s * eta * vt + vx * (2.0 * eta - 1.0) + (2.0 * eta - 1.0) * (lam + vx)) \
+        + fm * (4.0 * eta - 3.0) + 0.5 * fb + fc * s * eta * vt
+    p_vt = fn * (2.0 * s * eta * vx + 2.0 * vt * (1.0 - eta) * (4.0 * eta - 1.0)) + fm * 2.0 * s - 0.5 * fb * s \
+        + fc * (eta * vt * (1.0 - eta) + eta * (s * vx + vt * (1.0 - eta)))
+    p_lam = fn * vx * (2.0 * eta - 1.0) + fm * (4.0 * eta - 2.0)
+    p_s = fn * 2.0 * eta * vx * vt + fm * 2.0 * vt - 0.5 * fb * vt + fc * eta * vx * vt
+    return p_eta, p_vx, p_vt, p_lam, p_s
+
+
+@kernel
+def model_one(coef_s, coef_ell, coef_alpha, x_first, low, high, offset, point, num_blades, torque, loss, paper,
+              scratch, out):
     """``out[q, 0]`` the value of quantity ``q`` (:data:`QUANTITIES`) of one station at ``point`` (its
-    :data:`DIRECTIONS` values), ``out[q, 1 + k]`` its partial along direction ``k``."""
-    phi, x0, lam, vx, vt, r, radius, hub, rho, mu, chord = (point[0], point[1], point[2], point[3], point[4],
-                                                            point[5], point[6], point[7], point[8], point[9],
-                                                            point[10])
+    :data:`DIRECTIONS` values), ``out[q, 1 + k]`` its partial along direction ``k``.
+
+    ``paper``: the local point with the paper's loading (``local_paper.solve.paper_jets``): ``phi`` is not a
+    state but the paper loading's angle at ``s(x0)`` (``point[0]`` unused, its column zero), and ``eta2`` that
+    of the quartic (27); ``scratch``: a float array of one element."""
+    x0, lam, vx, vt, r, radius, hub, rho, mu, chord = (point[1], point[2], point[3], point[4], point[5], point[6],
+                                                       point[7], point[8], point[9], point[10])
     # ---- values (load_path_model.annulus_jets, loading_jets, section_jets, gap._reynolds_jet)
-    sn, cs = math.sin(phi), math.cos(phi)
-    f, f1, f2, f_r, f1_r, f_big, f1_big, f_h, f1_h = prandtl_partials_one(sn, cs, r, radius, hub, num_blades, loss)
     s, s1, s2 = _cubic(coef_s, x_first, low, high, offset, x0)
     ell, ell1, _ = _cubic(coef_ell, x_first, low, high, offset, x0)
     alpha, alpha1, _ = _cubic(coef_alpha, x_first, low, high, offset, x0)
+    phi, eta, u_p, b_p, c_p, root_p = point[0], math.nan, math.nan, math.nan, math.nan, math.nan
+    p_eta, p_vx, p_vt, p_lam, p_s = math.nan, math.nan, math.nan, math.nan, math.nan
+    if paper:  # local_paper.solve.loading: eta2 to round-off (two Newton steps from the solve's 1e-10), Eq. (26)
+        eta = paper_eta_one(scratch, vx, vt, lam, s)
+        for _ in range(2):
+            value, slope, _ = _quartic_value(eta, scratch, (vx, vt, lam, s))
+            eta = eta - value / slope
+        p_eta, p_vx, p_vt, p_lam, p_s = _quartic_partials(eta, vx, vt, lam, s)
+        b_p = 0.5 * (vx - vt * s)
+        c_p = eta * vt * (vt * (1.0 - eta) + vx * s)
+        root_p = math.sqrt(b_p * b_p + c_p)
+        u_p = b_p + root_p if b_p >= 0.0 else c_p / (root_p - b_p)
+        phi = math.atan2(u_p, eta * vt)
+    sn, cs = math.sin(phi), math.cos(phi)
+    f, f1, f2, f_r, f1_r, f_big, f1_big, f_h, f1_h = prandtl_partials_one(sn, cs, r, radius, hub, num_blades, loss)
     c_th, c_x = sn + s * cs, cs - s * sn
     a = vx * c_th + vt * c_x
     a1 = vx * c_x - vt * c_th
@@ -173,20 +212,31 @@ def model_one(coef_s, coef_ell, coef_alpha, x_first, low, high, offset, point, n
     d_tot = f1 * t + f * t1 + kappa * (f * t_s)
     cl = math.exp(x0 - ell)
     big_q = math.exp(x0) * ratio
-    values = (n_tot - lam * d_tot, r2, n_tot, d_tot, f * (e - lam * t), w / vt, alpha, cl, cl * s, math.exp(ell),
+    values = (n_tot - lam * d_tot, r2, n_tot, d_tot, f * (e - lam * t), eta if paper else w / vt, alpha, cl, cl * s,
+              math.exp(ell),
               p * big_q, ell - math.log(rho * w0 * chord / mu), phi, n_tot / d_tot)
     for k in range(_Q):
         out[k, 0] = values[k]
     # ---- tangents along each direction (the line of the same name, differentiated)
     for k in range(_K):
-        dphi, dx0, dlam, dvx, dvt, dr, dbig, dh, drho, dmu, dc = (_seed(k, 0), _seed(k, 1), _seed(k, 2),
+        dphi, dx0, dlam, dvx, dvt, dr, dbig, dh, drho, dmu, dchord = (_seed(k, 0), _seed(k, 1), _seed(k, 2),
                                                                  _seed(k, 3), _seed(k, 4), _seed(k, 5),
                                                                  _seed(k, 6), _seed(k, 7), _seed(k, 8),
                                                                  _seed(k, 9), _seed(k, 10))
+        ds, ds1 = s1 * dx0, s2 * dx0
+        deta = 0.0
+        if paper:  # phi follows s and the inputs through the quartic and Eq. (26)
+            deta = -(p_vx * dvx + p_vt * dvt + p_lam * dlam + p_s * ds) / p_eta
+            db = 0.5 * (dvx - dvt * s - vt * ds)
+            inner = vt * (1.0 - eta) + vx * s
+            dc = (deta * vt + eta * dvt) * inner + eta * vt * (dvt * (1.0 - eta) - vt * deta + dvx * s + vx * ds)
+            droot = (2.0 * b_p * db + dc) / (2.0 * root_p)
+            du = db + droot if b_p >= 0.0 else (dc - u_p * (droot - db)) / (root_p - b_p)
+            den = eta * vt
+            dphi = (den * du - u_p * (deta * vt + eta * dvt)) / (u_p * u_p + den * den)
         dsn, dcs = cs * dphi, -sn * dphi
         df = f1 * dphi + f_r * dr + f_big * dbig + f_h * dh
         df1 = f2 * dphi + f1_r * dr + f1_big * dbig + f1_h * dh
-        ds, ds1 = s1 * dx0, s2 * dx0
         dc_th, dc_x = dsn + ds * cs + s * dcs, dcs - ds * sn - s * dsn
         da = dvx * c_th + vx * dc_th + dvt * c_x + vt * dc_x
         da1 = dvx * c_x + vx * dc_x - dvt * c_th - vt * dc_th
@@ -225,26 +275,37 @@ def model_one(coef_s, coef_ell, coef_alpha, x_first, low, high, offset, point, n
         dell = ell1 * dx0
         dcl = cl * (dx0 - dell)
         tangents = (dn - dlam * d_tot - lam * dd, dr2, dn, dd,
-                    df * (e - lam * t) + f * (de - dlam * t - lam * dt), (dw - w * dvt / vt) / vt,
+                    df * (e - lam * t) + f * (de - dlam * t - lam * dt), deta if paper else (dw - w * dvt / vt) / vt,
                     alpha1 * dx0, dcl, dcl * s + cl * ds, math.exp(ell) * dell,
                     dp * big_q + p * big_q * dx0 + p * math.exp(x0) * dratio,
-                    dell - (drho / rho + dlog_w0 + dc / chord - dmu / mu), dphi, (dn - values[13] * dd) / d_tot)
+                    dell - (drho / rho + dlog_w0 + dchord / chord - dmu / mu), dphi, (dn - values[13] * dd) / d_tot)
         for j in range(_Q):
             out[j, 1 + k] = tangents[j]
 
 
 @kernel
 def eliminate_all(coef_s, coef_ell, coef_alpha, grid, cover_first, cover_last, offsets, points, labels, num_blades,
-                  torque, loss, residuals, inputs, outputs, totals):
+                  torque, loss, paper, residuals, inputs, outputs, totals):
     """``totals[n, o, i]``: the total partial of quantity ``outputs[o]`` with respect to direction ``inputs[i]`` at
     station ``n`` (``points[n]`` its :data:`DIRECTIONS` values, ``labels[n]`` its sheet), the states ``(phi, x0)``
-    eliminated through the two ``residuals`` (rows of :data:`QUANTITIES`)."""
+    eliminated through the two ``residuals`` (rows of :data:`QUANTITIES`), or with ``paper`` the state ``x0``
+    through the one."""
     x_first = grid[0]
     work = np.empty((_Q, 1 + _K))
+    scratch = np.zeros(1)
     for n in range(points.shape[0]):
         label = labels[n]
         model_one(coef_s, coef_ell, coef_alpha, x_first, cover_first[label], cover_last[label], offsets[label],
-                  points[n], num_blades, torque, loss, work)
+                  points[n], num_blades, torque, loss, paper, scratch, work)
+        if paper:
+            ra = residuals[0]
+            inv_slope = 1.0 / work[ra, 2]
+            for i in range(inputs.shape[0]):
+                col = 1 + inputs[i]
+                d_x0 = -work[ra, col] * inv_slope
+                for o in range(outputs.shape[0]):
+                    totals[n, o, i] = work[outputs[o], col] + work[outputs[o], 2] * d_x0
+            continue
         ra, rb = residuals[0], residuals[1]
         j11, j12, j21, j22 = work[ra, 1], work[ra, 2], work[rb, 1], work[rb, 2]
         inv_det = 1.0 / (j11 * j22 - j12 * j21)
@@ -258,9 +319,9 @@ def eliminate_all(coef_s, coef_ell, coef_alpha, grid, cover_first, cover_last, o
                 totals[n, o, i] = work[row, col] + work[row, 1] * d_phi + work[row, 2] * d_x0
 
 
-def state_totals(table, points, labels, num_blades, torque, loss, residuals, inputs, outputs):
-    """:func:`eliminate_all` by names: ``points[n, len(DIRECTIONS)]``, the names of the two residuals, of the
-    inputs and of the outputs; returns ``totals[n, outputs, inputs]``."""
+def state_totals(table, points, labels, num_blades, torque, loss, residuals, inputs, outputs, paper=False):
+    """:func:`eliminate_all` by names: ``points[n, len(DIRECTIONS)]``, the names of the residuals (two, or with
+    ``paper`` one), of the inputs and of the outputs; returns ``totals[n, outputs, inputs]``."""
     from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, table_arrays
 
     coef, _, cover_first, cover_last, offset, _, _, _, _, grid, coef_ell, coef_alpha = table_arrays(table)
@@ -270,5 +331,5 @@ def state_totals(table, points, labels, num_blades, torque, loss, residuals, inp
     with np.errstate(all="ignore"):
         eliminate_all(coef, coef_ell, coef_alpha, grid, cover_first, cover_last, offset,
                       np.ascontiguousarray(points, dtype=float), np.asarray(labels, dtype=np.int64), num_blades,
-                      torque, LOSS_CODES[loss], index[0], directions, index[1], totals)
+                      torque, LOSS_CODES[loss], paper, index[0], directions, index[1], totals)
     return totals
