@@ -39,6 +39,7 @@ from bild_mdo.utils.cache_folder import cache_dir
 KERNEL_MODULES = ("utils/compiled.py", "bild/variants/local_point/kernels.py",
                   "bild/variants/local_point/paper_kernels.py", "bild/variants/local_point/sheet_solve.py",
                   "bild/variants/local_point/reference_kernel.py", "bild/variants/local_point/partials_kernel.py",
+                  "bild/variants/local_point/prandtl_kernels.py",
                   "bild/variants/reynolds_exact/kernel.py", "bild/variants/local_paper/kernel.py", "bild/variants/paper/eta2.py",
                   "bild/variants/turbine/compiled.py")
 

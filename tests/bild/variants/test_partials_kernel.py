@@ -18,7 +18,8 @@ from bild_mdo.bild.variants.local_paper.solve import paper_jets
 from bild_mdo.bild.variants.local_paper.solve import solve_stations as solve_paper
 from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES
 from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, section_jets, station_jets, take
-from bild_mdo.bild.variants.local_point.partials_kernel import prandtl_partials_one, state_totals
+from bild_mdo.bild.variants.local_point.partials_kernel import state_totals
+from bild_mdo.bild.variants.local_point.prandtl_kernels import prandtl_partials_one
 from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, table_jets
 from bild_mdo.bild.variants.local_point.station import OUTPUTS
 from bild_mdo.bild.variants.reference_point.reference_airfoil import default_polar

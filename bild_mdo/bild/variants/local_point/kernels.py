@@ -1,14 +1,18 @@
-"""Compiled per-station pieces of the local-section-point model: Prandtl's factor, sheet lookups, one trial.
+"""Compiled per-station pieces of the local-section-point model: sheet lookups, one trial, the station set-up.
 
 The same model as :mod:`~bild_mdo.bild.variants.local_point.load_path_model`
 (whose docstring derives it), written for one station at a time so that the
 solves of :mod:`~bild_mdo.bild.variants.reynolds_exact.kernel` can decide per
 station (:mod:`bild_mdo.utils.compiled`).  :func:`trial_one` returns, to
 round-off, what :func:`~bild_mdo.bild.variants.local_point.load_path_model.trial`
-returns for that station (``tests/bild/test_local_point_kernels.py`` compares
-them); the partials of the components still come from the whole-array jets.
+returns for that station (``tests/bild/variants/test_local_stations.py`` compares
+them); the components' partials come from the compiled tangent model of
+:mod:`~bild_mdo.bild.variants.local_point.partials_kernel`, their complex-step
+path from the whole-array jets.
 
-A table is passed as the tuple of :func:`table_arrays`.
+A table is passed as the tuple of :func:`table_arrays`.  Prandtl's factor is in
+:mod:`~bild_mdo.bild.variants.local_point.prandtl_kernels` (:func:`prandtl_one` and :func:`prandtl_value_one`
+are imported here for the kernels that use them).
 """
 from __future__ import annotations
 
@@ -17,22 +21,16 @@ import math
 import numpy as np
 
 from bild_mdo.airfoil.load_path_table import X_STEP
-from bild_mdo.bem.prandtl import EXPONENT_MAX, EXPONENT_MIN, SIN_PHI_FLOOR
 from bild_mdo.bild.annulus_stationarity import HOVER_PHI_MIN
+from bild_mdo.bild.variants.local_point.prandtl_kernels import prandtl_one, prandtl_value_one  # noqa: F401
 from bild_mdo.utils.compiled import kernel
 
-_TWO_OVER_PI = 2.0 / math.pi
 #: Newton steps on R2 in x0 per trial at most, and the step (in x0 = ln Re + ln cl) after which no more is taken:
 #: a trial's residual is then that of a state on R2 = 0 to round-off, so the angle solve converges
 #: quadratically also from a poor x0 (a warm start, a probe); nor where the steps so far predict the next one
 #: (``|d|**3 / |d_before|**2``, quadratic convergence) below X0_ROUNDOFF, the round-off of x0 (about 10).
 X0_PASSES, X0_TOL, X0_ROUNDOFF = 4, 1e-9, 1e-15
 _INV_STEP = 1.0 / X_STEP
-#: Hub exponent above which the hub factor is 1 (``1 - (2/pi) exp(-f)`` rounds to 1) and its derivatives
-#: (``~ exp(-f) f cot(phi)**2``, below 1e-16 for ``phi > 2 deg``) are dropped: they change no result beyond round-off.
-_HUB_UNITY = 48.0
-#: Exponents of the three forms of :func:`_factor`: series above the first, ``acos`` down to the second.
-_SERIES_EXPONENT, _ATAN_EXPONENT = 4.0, 0.1
 #: Codes of the loss models in the kernels.
 LOSS_CODES = {"none": 0, "tip": 1, "tip_hub": 2}
 _NAN = math.nan
@@ -52,89 +50,6 @@ def table_arrays(table):
                   np.ascontiguousarray(table.coef[1].T), np.ascontiguousarray(table.coef[2].T))
         table._kernel_arrays = arrays
     return arrays
-
-
-@kernel
-def _series_value(g, g2):
-    """``(2/pi) acos(g) = 1 - (2/pi) asin(g)`` from the series of ``asin`` (``g`` small, ``g2 = g**2``)."""
-    return 1.0 - _TWO_OVER_PI * g * (1.0 + g2 * (1.0 / 6.0 + g2 * (3.0 / 40.0 + g2 * (
-        5.0 / 112.0 + g2 * (35.0 / 1152.0 + g2 * (63.0 / 2816.0))))))
-
-
-@kernel
-def _factor(f, cot):
-    """Prandtl factor of exponent ``f = k / |sin phi|`` and its first two phi derivatives
-    with ``g = exp(-f)``,
-    ``F = (2/pi) acos(g)``, ``dF/df = (2/pi) g / sqrt(1 - g**2)``, ``d2F/df2 = -(dF/df) / (1 - g**2)``.
-
-    Where ``g < 0.02`` (most of the span for the hub factor, the inner span for the tip factor), ``acos`` and
-    ``1 / sqrt(1 - g**2)`` are their series in ``g**2`` (to ``g**12 < 1e-20``); where ``g > 0.9`` (by the tip and
-    the hub), ``1 - g`` comes from ``expm1`` and the angle from ``atan2``, which keep full accuracy there."""
-    inside = EXPONENT_MIN < f < EXPONENT_MAX
-    if inside and f > _SERIES_EXPONENT:
-        g = math.exp(-f)
-        g2 = g * g
-        value = _series_value(g, g2)
-        a1 = _TWO_OVER_PI * g * (1.0 + g2 * (0.5 + g2 * (0.375 + g2 * (0.3125 + g2 * (0.2734375 + g2 * 0.24609375)))))
-        q = 1.0 - g2
-    elif inside and f > _ATAN_EXPONENT:
-        g = math.exp(-f)
-        q = (1.0 - g) * (1.0 + g)
-        value = _TWO_OVER_PI * math.acos(g)
-        a1 = _TWO_OVER_PI * g / math.sqrt(q)
-    else:
-        one_minus = -math.expm1(-min(max(f, EXPONENT_MIN), EXPONENT_MAX))
-        g = 1.0 - one_minus
-        q = one_minus * (1.0 + g)
-        root = math.sqrt(q)
-        value = _TWO_OVER_PI * math.atan2(root, g)
-        if not inside:
-            return value, 0.0, 0.0
-        a1 = _TWO_OVER_PI * g / root
-    a2 = -a1 / q
-    f1 = -f * cot
-    return value, a1 * f1, a2 * f1 * f1 + a1 * (f * (1.0 + 2.0 * cot * cot))
-
-
-@kernel
-def prandtl_one(sn, cs, k_tip, k_hub, loss):
-    """``F, dF/dphi, d2F/dphi2`` of one station (``loss``: 0 none, 1 tip, 2 tip and hub)."""
-    if loss == 0:
-        return 1.0, 0.0, 0.0
-    inverse = 1.0 / max(sn, SIN_PHI_FLOOR)
-    cot = cs * inverse
-    t, t1, t2 = _factor(k_tip * inverse, cot)
-    f_hub = k_hub * inverse
-    if loss == 1 or f_hub > _HUB_UNITY:
-        return t, t1, t2
-    h, h1, h2 = _factor(f_hub, cot)
-    return t * h, t1 * h + t * h1, t2 * h + 2.0 * t1 * h1 + t * h2
-
-
-@kernel
-def _factor_value(f):
-    """The value of :func:`_factor` alone, in its three forms."""
-    if _SERIES_EXPONENT < f < EXPONENT_MAX:
-        g = math.exp(-f)
-        return _series_value(g, g * g)
-    if f > _ATAN_EXPONENT:
-        return _TWO_OVER_PI * math.acos(math.exp(-min(f, EXPONENT_MAX)))
-    one_minus = -math.expm1(-max(f, EXPONENT_MIN))
-    g = 1.0 - one_minus
-    return _TWO_OVER_PI * math.atan2(math.sqrt(one_minus * (1.0 + g)), g)
-
-
-@kernel
-def prandtl_value_one(sn, k_tip, k_hub, loss):
-    """Prandtl's ``F`` alone (the value of :func:`prandtl_one`)."""
-    if loss == 0:
-        return 1.0
-    inverse = 1.0 / max(sn, SIN_PHI_FLOOR)
-    value = _factor_value(k_tip * inverse)
-    f_hub = k_hub * inverse
-    if loss == 2 and f_hub <= _HUB_UNITY:
-        value *= _factor_value(f_hub)
-    return value
 
 
 @kernel

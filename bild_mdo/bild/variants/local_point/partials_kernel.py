@@ -31,9 +31,9 @@ import math
 import numpy as np
 
 from bild_mdo.airfoil.load_path_table import X_STEP
-from bild_mdo.bem.prandtl import EXPONENT_MAX, EXPONENT_MIN, SIN_PHI_FLOOR
-from bild_mdo.bild.variants.local_point.kernels import _ATAN_EXPONENT, _SERIES_EXPONENT, _series_value, lookup
+from bild_mdo.bild.variants.local_point.kernels import lookup
 from bild_mdo.bild.variants.local_point.paper_kernels import _quartic_value, paper_eta_one
+from bild_mdo.bild.variants.local_point.prandtl_kernels import prandtl_partials_one
 from bild_mdo.utils.compiled import kernel
 
 #: Directions of the tangents (columns 1.. of :func:`model_one`'s output) and the rows of the inputs array.
@@ -41,7 +41,6 @@ DIRECTIONS = ("phi", "x0", "lam", "v_axial", "v_theta", "r", "radius", "hub_radi
 #: Quantities of the model (rows of :func:`model_one`'s output).
 QUANTITIES = ("r1", "r2", "n_tot", "d_tot", "objective", "eta2", "alpha_star", "cl_star", "cd_star", "reynolds",
               "load_reynolds", "r_ell", "phi", "lambda_ratio")
-_TWO_OVER_PI = 2.0 / math.pi
 _INV_STEP = 1.0 / X_STEP
 _K = len(DIRECTIONS)
 _Q = len(QUANTITIES)
@@ -51,73 +50,6 @@ _Q = len(QUANTITIES)
 def _seed(k, j):
     """Component ``j`` of the unit direction ``k``."""
     return 1.0 if k == j else 0.0
-
-
-@kernel
-def _factor_df(f):
-    """``P = (2/pi) acos(exp(-f))``, ``dP/df`` and ``d2P/df2`` (the forms of ``kernels._factor``; derivatives zero
-    where ``f`` is clipped to ``[EXPONENT_MIN, EXPONENT_MAX]``, as in ``prandtl.acos_factor_jet``)."""
-    inside = EXPONENT_MIN < f < EXPONENT_MAX
-    if inside and f > _SERIES_EXPONENT:
-        g = math.exp(-f)
-        g2 = g * g
-        value = _series_value(g, g2)
-        a1 = _TWO_OVER_PI * g * (1.0 + g2 * (0.5 + g2 * (0.375 + g2 * (0.3125 + g2 * (0.2734375 + g2 * 0.24609375)))))
-        q = 1.0 - g2
-    elif inside and f > _ATAN_EXPONENT:
-        g = math.exp(-f)
-        q = (1.0 - g) * (1.0 + g)
-        value = _TWO_OVER_PI * math.acos(g)
-        a1 = _TWO_OVER_PI * g / math.sqrt(q)
-    else:
-        one_minus = -math.expm1(-min(max(f, EXPONENT_MIN), EXPONENT_MAX))
-        g = 1.0 - one_minus
-        q = one_minus * (1.0 + g)
-        root = math.sqrt(q)
-        value = _TWO_OVER_PI * math.atan2(root, g)
-        if not inside:
-            return value, 0.0, 0.0
-        a1 = _TWO_OVER_PI * g / root
-    return value, a1, -a1 / q
-
-
-@kernel
-def _one_factor(numerator, inv_s, cot):
-    """One factor ``P(a / |sin phi|)``: value, ``d/dphi``, ``d2/dphi2``, ``d/da``, ``d2/(dphi da)``."""
-    f = numerator * inv_s
-    p, a1, a2 = _factor_df(f)
-    f1 = -f * cot
-    f2 = f * (1.0 + 2.0 * cot * cot)
-    f1_a = -cot * inv_s
-    return p, a1 * f1, a2 * f1 * f1 + a1 * f2, a1 * inv_s, a2 * inv_s * f1 + a1 * f1_a
-
-
-@kernel
-def prandtl_partials_one(sn, cs, r, radius, hub, num_blades, loss):
-    """``F, F_phi, F_phiphi, F_r, F_phir, F_R, F_phiR, F_hub, F_phihub`` of one station (``loss``: 0 none,
-    1 tip, 2 tip and hub); ``|sin phi|`` floored as in ``prandtl._factor_jet``."""
-    if loss == 0:
-        return 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    if sn < SIN_PHI_FLOOR:
-        inv_s, cot = 1.0 / SIN_PHI_FLOOR, 0.0
-    else:
-        inv_s, cot = 1.0 / sn, cs / sn
-    half_b = 0.5 * num_blades
-    # Tip: a = B (R - r) / (2 r), da/dr = -B R / (2 r**2), da/dR = B / (2 r).
-    t, t1, t2, t_a, t1_a = _one_factor(half_b * (radius - r) / r, inv_s, cot)
-    ta_r, ta_big = -half_b * radius / (r * r), half_b / r
-    if loss == 1:
-        return t, t1, t2, t_a * ta_r, t1_a * ta_r, t_a * ta_big, t1_a * ta_big, 0.0, 0.0
-    # Hub: a = B (r - r_hub) / (2 r_hub), da/dr = B / (2 r_hub), da/dr_hub = -B r / (2 r_hub**2).
-    h, h1, h2, h_a, h1_a = _one_factor(half_b * (r - hub) / hub, inv_s, cot)
-    ha_r, ha_hub = half_b / hub, -half_b * r / (hub * hub)
-    tr, t1r, hr, h1r = t_a * ta_r, t1_a * ta_r, h_a * ha_r, h1_a * ha_r
-    tb, t1b = t_a * ta_big, t1_a * ta_big
-    hh, h1h = h_a * ha_hub, h1_a * ha_hub
-    return (t * h, t1 * h + t * h1, t2 * h + 2.0 * t1 * h1 + t * h2,
-            tr * h + t * hr, t1r * h + t1 * hr + tr * h1 + t * h1r,
-            tb * h, t1b * h + tb * h1,
-            t * hh, t1 * hh + t * h1h)
 
 
 @kernel

@@ -88,7 +88,7 @@ def _factor_reference(f, cot):
 def test_compiled_prandtl_factor_forms():
     # The three forms of the compiled factor (series in exp(-f), acos, atan2 with expm1) and the clips, across
     # every boundary between them, against the factor evaluated accurately (a hand-checkable closed form).
-    from bild_mdo.bild.variants.local_point.kernels import _factor, _factor_value
+    from bild_mdo.bild.variants.local_point.prandtl_kernels import _factor, _factor_value
 
     for f in np.concatenate([np.geomspace(1e-12, 300.0, 400), [0.1, 4.0, 100.0]]):
         for cot in (0.3, 2.0, 9.0):
