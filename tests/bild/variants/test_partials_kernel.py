@@ -9,6 +9,7 @@ checked against complex step in test_local_stations and test_local_reference) an
 independent writing of the derivatives, so agreement to round-off checks both.
 """
 import numpy as np
+import openmdao.api as om
 import pytest
 
 from bild_mdo.airfoil.load_path_table import load_path_table
@@ -119,3 +120,20 @@ def test_paper_loading_station_totals_are_those_of_the_jets(chord_form, loss_mod
                             OUTPUTS, paper=True)
     assert np.all(np.isfinite(compiled))
     assert _relative_error(compiled, reference) < 1e-10
+
+
+def test_partials_that_are_not_finite_raise():
+    # A state off its sheet (x0 beyond the sheet's cover) has no partials: one clear error, not silent NaN; a
+    # station the caller replaces (required False) is let through.
+    table = load_path_table(default_polar())
+    flow = _flow(20)
+    sol = solve_stations(table, flow)
+    at = np.flatnonzero(sol.status == LOADED)[:3]
+    sub = take(flow, at)
+    points = np.column_stack([sol.phi[at], sol.x0[at], *(getattr(sub, name) for name in INPUTS), np.ones(at.size)])
+    points[1, 1] = table.x_last + 10.0
+    args = (table, points, sol.label[at], sub.num_blades, False, "tip_hub", ("r1", "r2"), INPUTS, OUTPUTS)
+    with pytest.raises(om.AnalysisError, match="not finite .1 of 3 stations"):
+        state_totals(*args)
+    totals = state_totals(*args, required=np.array([True, False, True]))
+    assert np.all(np.isfinite(totals[[0, 2]])) and not np.all(np.isfinite(totals[1]))

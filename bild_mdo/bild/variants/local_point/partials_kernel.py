@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import openmdao.api as om
 
 from bild_mdo.airfoil.load_path_table import X_STEP
 from bild_mdo.bild.variants.local_point.kernels import lookup
@@ -251,17 +252,28 @@ def eliminate_all(coef_s, coef_ell, coef_alpha, grid, cover_first, cover_last, o
                 totals[n, o, i] = work[row, col] + work[row, 1] * d_phi + work[row, 2] * d_x0
 
 
-def state_totals(table, points, labels, num_blades, torque, loss, residuals, inputs, outputs, paper=False):
+def state_totals(table, points, labels, num_blades, torque, loss, residuals, inputs, outputs, paper=False,
+                 required=None):
     """:func:`eliminate_all` by names: ``points[n, len(DIRECTIONS)]``, the names of the residuals (two, or with
-    ``paper`` one), of the inputs and of the outputs; returns ``totals[n, outputs, inputs]``."""
+    ``paper`` one), of the inputs and of the outputs; returns ``totals[n, outputs, inputs]``.
+
+    Raises om.AnalysisError where a partial of a station is not finite (a state singular in its residuals),
+    except at the stations where ``required`` (a boolean mask) is False: the caller replaces those."""
     from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, table_arrays
 
     coef, _, cover_first, cover_last, offset, _, _, _, _, grid, coef_ell, coef_alpha = table_arrays(table)
     totals = np.zeros((points.shape[0], len(outputs), len(inputs)))
     index = [np.array([QUANTITIES.index(name) for name in names], dtype=np.int64) for names in (residuals, outputs)]
     directions = np.array([DIRECTIONS.index(name) for name in inputs], dtype=np.int64)
-    with np.errstate(all="ignore"):
-        eliminate_all(coef, coef_ell, coef_alpha, grid, cover_first, cover_last, offset,
-                      np.ascontiguousarray(points, dtype=float), np.asarray(labels, dtype=np.int64), num_blades,
-                      torque, LOSS_CODES[loss], paper, index[0], directions, index[1], totals)
+    eliminate_all(coef, coef_ell, coef_alpha, grid, cover_first, cover_last, offset,
+                  np.ascontiguousarray(points, dtype=float), np.asarray(labels, dtype=np.int64), num_blades, torque,
+                  LOSS_CODES[loss], paper, index[0], directions, index[1], totals)
+    bad = ~np.all(np.isfinite(totals), axis=(1, 2))
+    if required is not None:
+        bad &= required
+    if np.any(bad):
+        i = int(np.flatnonzero(bad)[0])
+        raise om.AnalysisError(f"local section point: the partials of a solved state are not finite ({bad.sum()} of "
+                               f"{bad.size} stations, the first on sheet {int(labels[i])} at x0 = {points[i, 1]:.6g}, "
+                               f"phi = {points[i, 0]:.6g} rad): its state is singular in the residuals")
     return totals

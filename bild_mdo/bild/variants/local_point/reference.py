@@ -187,9 +187,9 @@ class LocalReferenceComp(om.ExplicitComponent):
                 values["lambda_n"][gap], values["lambda_d"][gap] = np.real(lam[0]), np.real(lam[1])
         return values
 
-    def _linear(self, ref, solution):
+    def _linear(self, ref, solution, lam_failed=None):
         """Partials of the outputs with respect to the inputs (the states eliminated by the implicit-function
-        theorem)."""
+        theorem); ``lam_failed``: the nodes whose lambda's partials :meth:`compute_partials` replaces."""
         n = ref.r.size
         keys = list(_INPUT_KEYS.values())
         partials = {(out, wrt): np.zeros(n) for out in self._output_names for wrt in keys}
@@ -200,14 +200,14 @@ class LocalReferenceComp(om.ExplicitComponent):
                                      + [getattr(ref, name)[at] for name in DIRECTIONS[3:]])
             totals = state_totals(self.table, points, solution.label[at], ref.num_blades, ref.chord_form == "torque",
                                   ref.loss_model, ("r2", "r_ell"), keys,
-                                  [_TABLE_QUANTITIES[name] for name in outputs])
+                                  [_TABLE_QUANTITIES[name] for name in outputs],
+                                  required=None if lam_failed is None else ~lam_failed[at])
             for i, out in enumerate(outputs):
                 for j, k in enumerate(keys):
                     partials[out, k][at] = totals[:, i, j]
-        for at, jets_of in ((np.flatnonzero(~solution.on_table & solution.ok), self._gap_jets),):
-            if at.size == 0:
-                continue
-            residuals, states, outputs, _ = jets_of(take_reference(ref, at), solution, at)
+        at = np.flatnonzero(~solution.on_table & solution.ok)
+        if at.size:  # in the Reynolds gap: its jets
+            residuals, states, outputs, _ = self._gap_jets(take_reference(ref, at), solution, at)
             jac = jacobian(residuals, states, at.size)
             rhs = jacobian(residuals, keys, at.size)
             with np.errstate(all="ignore"):
@@ -284,7 +284,7 @@ class LocalReferenceComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         cache = self._solve(inputs)
         if cache["linear"] is None:
-            cache["linear"] = self._linear(self._flow(inputs), cache["solution"])
+            cache["linear"] = self._linear(self._flow(inputs), cache["solution"], cache.get("lam_failed"))
         linear = cache["linear"]
         ok = cache["solution"].ok
         ref = self._flow(inputs)
