@@ -309,10 +309,11 @@ def _shifted(value, slopes, deltas, base):
     return out
 
 
-def gap_jets(polar, ref, phi, alpha):
-    """:class:`GapJets` at ``(phi, alpha)`` (real states; real or complex inputs)."""
+def gap_jets(polar, ref, phi, alpha, seed=True):
+    """:class:`GapJets` at ``(phi, alpha)`` (real states; real or complex inputs); ``seed=False``: partials with
+    respect to the states only (the inputs constants, as the solve needs them)."""
     al = variable(alpha, "alpha")
-    re = _reynolds_jet(ref)
+    re = _reynolds_jet(ref) if seed else Jet(reference_reynolds(ref), {})
     re_real = np.real(re.v)
     v, sec = polar.evaluate_with_second_derivatives(alpha, re_real)
     deltas, base = (al, re), (alpha, re_real)
@@ -329,9 +330,11 @@ def gap_jets(polar, ref, phi, alpha):
     a_pol, d_pol = cd_a * cl - cd * cl_a, cd_r * cl - cd * cl_r
     g = a_pol * (force + re * force_r) - re * d_pol * force_a
     jet = prandtl_loss_jet(phi, ref.r, ref.radius, ref.hub_radius, ref.num_blades, ref.loss_model)
-    f = Jet(jet.F, {"phi": jet.dF_dphi, "r": jet.dF_dr, "radius": jet.dF_dradius, "hub_radius": jet.dF_dhub_radius})
-    vx, vt = variable(ref.v_axial, "v_axial"), variable(ref.v_theta, "v_theta")
-    sigma = (ref.num_blades / (2.0 * np.pi)) * variable(ref.chord, "chord") / variable(ref.r, "r")
+    var = variable if seed else (lambda value, name: Jet(value, {}))
+    f = Jet(jet.F, {"phi": jet.dF_dphi, **({"r": jet.dF_dr, "radius": jet.dF_dradius,
+                                             "hub_radius": jet.dF_dhub_radius} if seed else {})})
+    vx, vt = var(ref.v_axial, "v_axial"), var(ref.v_theta, "v_theta")
+    sigma = (ref.num_blades / (2.0 * np.pi)) * var(ref.chord, "chord") / var(ref.r, "r")
     c_x, c_theta = cl * cs - cd * sn, cl * sn + cd * cs
     bem = (vx / vt) * (sigma * c_theta + 4.0 * f * sn * cs) + sigma * c_x - 4.0 * f * sn * sn
     return GapJets(bem, g, cl, cd, re * force, re)
@@ -354,7 +357,7 @@ def gap_solve(polar, ref, phi):
     for _ in range(_PASSES):
         if active.size == 0:
             break
-        jets = gap_jets(polar, take_reference(ref, active), phi[active], alpha[active])
+        jets = gap_jets(polar, take_reference(ref, active), phi[active], alpha[active], seed=False)
         j11, j12 = np.broadcast_to(jets.bem.partial("phi"), active.shape), np.broadcast_to(jets.bem.partial("alpha"),
                                                                                              active.shape)
         j21, j22 = np.broadcast_to(jets.g.partial("phi"), active.shape), np.broadcast_to(jets.g.partial("alpha"),
