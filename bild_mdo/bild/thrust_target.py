@@ -152,7 +152,7 @@ class ThrustTargetComp(om.ImplicitComponent):
         says nothing about the next target).
         """
         nn = self.options["num_nodes"]
-        parked = getattr(self, "_parked", None)
+        parked = self._parked
         if parked is not None and np.any(parked):
             self._outputs[self._state] = np.where(parked, STATES[self._state][1], self._outputs[self._state])
             self._slope = np.where(parked, 1.0, self._slope)

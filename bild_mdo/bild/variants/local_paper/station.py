@@ -1,11 +1,8 @@
 """LocalPaperStationComp: the paper's ideal loading with each station's own section point, solved per station."""
-import numpy as np
-
 from bild_mdo.bild.variants.local_paper.solve import LOADED, paper_jets, solve_stations
-from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, section_jets, take
+from bild_mdo.bild.variants.local_point.load_path_model import section_jets
 from bild_mdo.bild.variants.local_point.options import station_failures
-from bild_mdo.bild.variants.local_point.partials_kernel import state_totals
-from bild_mdo.bild.variants.local_point.station import OUTPUTS, LocalStationComp
+from bild_mdo.bild.variants.local_point.station import LocalStationComp
 
 
 class LocalPaperStationComp(LocalStationComp):
@@ -26,6 +23,7 @@ class LocalPaperStationComp(LocalStationComp):
     METHOD = "local section point"
     FAILURES = {code: value for code, value in station_failures(METHOD).items() if code in (4, 5)}
     LOADED = LOADED
+    RESIDUALS = ("r2",)
 
     def solve(self, flow, start):
         solution = solve_stations(self.table, flow)
@@ -37,14 +35,3 @@ class LocalPaperStationComp(LocalStationComp):
         outputs = {"eta2": jets.eta2, "alpha_star": alpha, "cl_star": cl, "cd_star": cd, "reynolds": reynolds,
                    "load_reynolds": jets.ring.p * load}
         return (jets.r,), ("x0",), outputs
-
-    def _totals(self, inputs, cache):
-        if cache.get("totals") is None:
-            at = np.flatnonzero(cache["status"] == self.LOADED)
-            flow = take(self._flow(inputs), at)
-            points = np.column_stack([np.zeros(at.size), cache["states"][0][at]]
-                                     + [getattr(flow, name) for name in INPUTS] + [np.ones(at.size)])
-            cache["totals"] = (at, state_totals(self.table, points, cache["label"][at], flow.num_blades,
-                                                flow.chord_form == "torque", flow.loss_model, ("r2",), INPUTS,
-                                                OUTPUTS, paper=True))
-        return cache["totals"]

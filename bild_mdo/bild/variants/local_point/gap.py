@@ -385,6 +385,16 @@ def reference_reynolds(ref):
     return ref.rho * np.sqrt(ref.v_axial ** 2 + ref.v_theta ** 2) * ref.chord / ref.mu
 
 
+def reynolds_partials(v_axial, v_theta, chord, rho, mu):
+    """``Re = (rho W0 / mu) c`` (:func:`reference_reynolds`) and its partials with respect to ``v_axial, v_theta,
+    chord, rho, mu`` (a dict; the chord's is ``rho W0 / mu``, finite at ``c = 0``)."""
+    w0sq = v_axial ** 2 + v_theta ** 2
+    per_chord = rho * np.sqrt(w0sq) / mu
+    re = per_chord * chord
+    return re, {"v_axial": re * v_axial / w0sq, "v_theta": re * v_theta / w0sq, "chord": per_chord,
+                "rho": re / rho, "mu": -re / mu}
+
+
 #: Inputs of the reference station (flat per design), in the order of its partials.
 REFERENCE_FIELDS = ("v_axial", "v_theta", "r", "chord", "radius", "hub_radius", "rho", "mu")
 

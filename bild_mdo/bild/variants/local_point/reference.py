@@ -7,7 +7,8 @@ from bild_mdo.bem.prandtl import loss_inputs
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.variants.exact.exact_ideal_loading import check_reference_annulus
 from bild_mdo.bild.feasibility import report_infeasible
-from bild_mdo.bild.variants.local_point.gap import force_factors, gap_jets, reference_reynolds, take_reference, terms
+from bild_mdo.bild.variants.local_point.gap import (force_factors, gap_jets, reference_reynolds, reynolds_partials,
+                                                   take_reference, terms)
 from bild_mdo.bild.variants.local_point.options import declare_local_options
 from bild_mdo.bild.variants.local_point.partials_kernel import DIRECTIONS, state_totals
 from bild_mdo.bild.variants.local_point.reference_solve import ReferenceFlow, solve_reference, station_flow, table_jets
@@ -287,15 +288,11 @@ class LocalReferenceComp(om.ExplicitComponent):
             cache["linear"] = self._linear(self._flow(inputs), cache["solution"], cache.get("lam_failed"))
         linear = cache["linear"]
         ok = cache["solution"].ok
-        ref = self._flow(inputs)
-        re = reference_reynolds(ref)
-        w0sq = ref.v_axial ** 2 + ref.v_theta ** 2
-        d_re = {"v_axial": re * ref.v_axial / w0sq, "v_theta_ref": re * ref.v_theta / w0sq,
-                "ref_chord": re / ref.chord, "rho": re / ref.rho, "mu": -re / ref.mu}
+        _, d_re = reynolds_partials(*(np.real(inputs[name]) for name in _REYNOLDS_INPUTS))
         for out in self._output_names:
             for wrt in self._out_wrt[out]:
                 if out == "reynolds_ref":
-                    partials[out, wrt] = d_re[wrt]
+                    partials[out, wrt] = d_re[_INPUT_KEYS[wrt]]
                     continue
                 value = np.where(ok, linear[out, _INPUT_KEYS[wrt]], 0.0)
                 if out == "ideal_loading_constant":

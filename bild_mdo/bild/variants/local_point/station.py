@@ -11,7 +11,9 @@ the chord Reynolds number ``reynolds``, the load Reynolds number
 station's section point (sheets are numbered by angle of attack; adjacent
 stations on different sheets are a jump of the design).  Partials by the
 implicit-function theorem on the variant's residuals in its states, all
-analytic (:class:`~bild_mdo.utils.jet.Jet`); under complex step one Newton
+analytic, from the compiled model of
+:mod:`~bild_mdo.bild.variants.local_point.partials_kernel`; under complex step
+the jets (:class:`~bild_mdo.utils.jet.Jet`) of the same model: one Newton
 update in complex arithmetic carries the derivative of the states and the
 outputs are evaluated with the complex inputs.  A subclass gives the solve
 (:meth:`LocalStationComp.solve`) and the jets (:meth:`LocalStationComp.jets`).
@@ -24,7 +26,8 @@ from bild_mdo.bem.prandtl import loss_inputs
 from bild_mdo.bild.feasibility import report_station_status
 from bild_mdo.bild.variants.local_point.load_path_model import FLOW_ARRAYS, INPUTS, StationFlow, take
 from bild_mdo.bild.variants.local_point.options import UNLOADED_OUTPUTS, declare_local_options
-from bild_mdo.utils.jet import eliminate, jacobian
+from bild_mdo.bild.variants.local_point.partials_kernel import state_totals
+from bild_mdo.utils.jet import jacobian
 from bild_mdo.utils.options import VARIABLES, add_inputs, add_outputs
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 
@@ -58,6 +61,9 @@ class LocalStationComp(om.ExplicitComponent):
     FAILURES = {}
     #: The loaded status code of the solve.
     LOADED = 0
+    #: The residuals of the compiled partials (:data:`~bild_mdo.bild.variants.local_point.partials_kernel.QUANTITIES`):
+    #: two in the states ``(phi, x0)``, or one in ``x0`` (the paper loading, whose ``phi`` follows from ``x0``).
+    RESIDUALS = ()
 
     def initialize(self):
         declare_local_options(self.options)
@@ -181,18 +187,13 @@ class LocalStationComp(om.ExplicitComponent):
                 np.where(near, previous["label"][stations], -1))
 
     def _linear(self, inputs, cache):
-        """Jets at the loaded stations and the implicit-function sensitivities of their states."""
+        """Jets at the loaded stations (real inputs) and the Jacobian of their residuals in their states (the
+        complex-step path of :meth:`compute`)."""
         if cache["linear"] is None:
             at = np.flatnonzero(cache["status"] == self.LOADED)
             flow = take(self._flow(inputs), at)
             residuals, names, outputs = self.jets(flow, tuple(x[at] for x in cache["states"]), cache["label"][at])
-            jac = jacobian(residuals, names, at.size)
-            rhs = jacobian(residuals, INPUTS, at.size)
-            with np.errstate(all="ignore"):
-                sens = -np.linalg.solve(jac, rhs)  # [n, states, inputs]
-            # [n, outputs, inputs]: the partials of OUTPUTS with the states eliminated.
-            totals = eliminate((outputs[name] for name in OUTPUTS), names, INPUTS, sens, at.size)
-            cache["linear"] = (at, names, outputs, jac, totals)
+            cache["linear"] = (at, names, outputs, jacobian(residuals, names, at.size))
         return cache["linear"]
 
     def compute(self, inputs, outputs):
@@ -200,7 +201,7 @@ class LocalStationComp(om.ExplicitComponent):
         shape = inputs["v_theta"].shape
         values = dict(cache["values"])  # outputs[name] = ... copies them into the output vector
         if self.under_complex_step:
-            at, names, real_outputs, jac, _ = self._linear({k: np.real(v) for k, v in inputs.items()}, cache)
+            at, names, real_outputs, jac = self._linear({k: np.real(v) for k, v in inputs.items()}, cache)
             if at.size:
                 flow = take(self._flow(inputs, real=False), at)
                 residuals, _, complex_outputs = self.jets(flow, tuple(x[at] for x in cache["states"]),
@@ -219,9 +220,20 @@ class LocalStationComp(om.ExplicitComponent):
 
     def _totals(self, inputs, cache):
         """``(at, totals[at, OUTPUTS, INPUTS])``: the partials of the outputs at the loaded stations ``at``, the
-        states eliminated (here from the jets of :meth:`_linear`)."""
-        at, _, _, _, totals = self._linear(inputs, cache)
-        return at, totals
+        states eliminated, from the compiled model
+        (:func:`~bild_mdo.bild.variants.local_point.partials_kernel.state_totals` with :attr:`RESIDUALS`; the
+        paper loading's one state is ``x0``, its ``phi`` follows from it)."""
+        if cache.get("totals") is None:
+            at = np.flatnonzero(cache["status"] == self.LOADED)
+            flow = take(self._flow(inputs), at)
+            states = [x[at] for x in cache["states"]]
+            phi = states[0] if len(states) == 2 else np.zeros(at.size)
+            points = np.column_stack([phi, states[-1]] + [getattr(flow, name) for name in INPUTS]
+                                     + [np.ones(at.size)])
+            cache["totals"] = (at, state_totals(self.table, points, cache["label"][at], flow.num_blades,
+                                                flow.chord_form == "torque", flow.loss_model, self.RESIDUALS,
+                                                INPUTS, OUTPUTS, paper=len(self.RESIDUALS) == 1))
+        return cache["totals"]
 
     def compute_partials(self, inputs, partials):
         cache = self._solve(inputs)

@@ -19,6 +19,7 @@ Outputs: ``ref_chord[nn]`` (m), ``reynolds_ref[nn]``.  Analytic partials.
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.bild.variants.local_point.gap import reynolds_partials
 from bild_mdo.utils.options import add_inputs, declare_size_options
 from bild_mdo.utils.sparsity import node_wrt_dist, node_wrt_node
 
@@ -58,16 +59,16 @@ class ChordAtReferenceComp(om.ExplicitComponent):
         ca, cb = inputs["chord_raw"][rows, k], inputs["chord_raw"][rows, k + 1]
         return rows, k, a, b, ca, cb
 
-    def _reynolds_factor(self, inputs):
-        w0 = np.sqrt(inputs["v_axial"] ** 2 + inputs["v_theta_ref"] ** 2)
-        return inputs["rho"] * w0 / inputs["mu"], w0
+    def _reynolds(self, inputs, chord):
+        """``Re_ref`` at ``chord`` and its partials (:func:`~bild_mdo.bild.variants.local_point.gap.reynolds_partials`)."""
+        return reynolds_partials(inputs["v_axial"], inputs["v_theta_ref"], chord, inputs["rho"], inputs["mu"])
 
     def compute(self, inputs, outputs):
         _, _, a, b, ca, cb = self._interval(inputs)
         weight = (inputs["ref_radius"] - a) / (b - a)
         chord = ca + weight * (cb - ca)
         outputs["ref_chord"] = chord
-        outputs["reynolds_ref"] = self._reynolds_factor(inputs)[0] * chord
+        outputs["reynolds_ref"] = self._reynolds(inputs, chord)[0]
 
     def compute_partials(self, inputs, partials):
         nn, nr = self.options["num_nodes"], self.options["num_radial"]
@@ -77,7 +78,8 @@ class ChordAtReferenceComp(om.ExplicitComponent):
         weight = (q - a) / span
         rise = cb - ca
         chord = ca + weight * rise
-        factor, w0 = self._reynolds_factor(inputs)
+        _, d_re = self._reynolds(inputs, chord)
+        factor = d_re["chord"]
         d_chord = np.zeros((nn, nr), dtype=np.result_type(weight, float))
         d_radii = np.zeros_like(d_chord)
         d_chord[rows, k], d_chord[rows, k + 1] = 1.0 - weight, weight
@@ -89,7 +91,5 @@ class ChordAtReferenceComp(om.ExplicitComponent):
         partials["reynolds_ref", "chord_raw"] = (factor[:, None] * d_chord).ravel()
         partials["reynolds_ref", "radii"] = (factor[:, None] * d_radii).ravel()
         partials["reynolds_ref", "ref_radius"] = factor * rise / span
-        partials["reynolds_ref", "v_axial"] = factor * chord * inputs["v_axial"] / w0 ** 2
-        partials["reynolds_ref", "v_theta_ref"] = factor * chord * inputs["v_theta_ref"] / w0 ** 2
-        partials["reynolds_ref", "rho"] = factor * chord / inputs["rho"]
-        partials["reynolds_ref", "mu"] = -factor * chord / inputs["mu"]
+        for name, key in (("v_axial", "v_axial"), ("v_theta_ref", "v_theta"), ("rho", "rho"), ("mu", "mu")):
+            partials["reynolds_ref", name] = d_re[key]

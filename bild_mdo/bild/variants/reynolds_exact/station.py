@@ -1,10 +1,7 @@
 """ReynoldsStationComp: every station of the Reynolds-aware exact ideal loading, solved on its own given lambda."""
-import numpy as np
-
-from bild_mdo.bild.variants.local_point.load_path_model import INPUTS, station_jets, take
+from bild_mdo.bild.variants.local_point.load_path_model import station_jets
 from bild_mdo.bild.variants.local_point.options import station_failures
-from bild_mdo.bild.variants.local_point.partials_kernel import state_totals
-from bild_mdo.bild.variants.local_point.station import OUTPUTS, LocalStationComp
+from bild_mdo.bild.variants.local_point.station import LocalStationComp
 from bild_mdo.bild.variants.reynolds_exact.solve import LOADED, solve_stations
 
 
@@ -30,6 +27,7 @@ class ReynoldsStationComp(LocalStationComp):
     METHOD = "Reynolds-aware exact ideal loading"
     FAILURES = {code: value for code, value in station_failures(METHOD).items() if code in (3, 4, 5)}
     LOADED = LOADED
+    RESIDUALS = ("r1", "r2")
 
     def solve(self, flow, start):
         if start is None:
@@ -43,14 +41,3 @@ class ReynoldsStationComp(LocalStationComp):
         outputs = {"eta2": jets.eta2, "alpha_star": jets.alpha, "cl_star": jets.cl, "cd_star": jets.cd,
                    "reynolds": jets.reynolds, "load_reynolds": jets.load_reynolds}
         return (jets.r1, jets.r2), ("phi", "x0"), outputs
-
-    def _totals(self, inputs, cache):
-        if cache.get("totals") is None:
-            at = np.flatnonzero(cache["status"] == self.LOADED)
-            flow = take(self._flow(inputs), at)
-            points = np.column_stack([cache["states"][0][at], cache["states"][1][at]]
-                                     + [getattr(flow, name) for name in INPUTS] + [np.ones(at.size)])
-            cache["totals"] = (at, state_totals(self.table, points, cache["label"][at], flow.num_blades,
-                                                flow.chord_form == "torque", flow.loss_model, ("r1", "r2"), INPUTS,
-                                                OUTPUTS))
-        return cache["totals"]
