@@ -26,8 +26,8 @@ built-in NACA 4412 polar and ``num_radial = 30``:
   variable in one back-substitution by levels) and once with ``LinearRunOnce``
   set by the user (one sweep of the chain per seed);
 * every time twice: wall time (``time.perf_counter``) and the CPU time of this
-  thread (``time.thread_time``), which other processes on a shared machine
-  do not inflate; the ratios are given for both;
+  process, all its threads (``time.process_time``), which other processes on a
+  shared machine do not inflate; the ratios are given for both;
 * the wall time of :func:`bild_mdo.results.design.design_rotor` for one design
   once its model is cached (the Python API's overhead on top of ``run_model``).
 
@@ -123,8 +123,8 @@ def timed(function, clock=time.perf_counter):
 
 
 def cpu_timed(function):
-    """CPU time of this thread (``time.thread_time``): not inflated when other processes share the cores."""
-    return timed(function, time.thread_time)
+    """CPU time of this process, all its threads (``time.process_time``): not inflated by other processes."""
+    return timed(function, time.process_time)
 
 
 def single_designs(sweep, count):

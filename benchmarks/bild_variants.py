@@ -14,7 +14,9 @@ served from a cache):
 * one design: ``run_model`` with ``num_nodes = 1`` (median of the repeats);
 * a batch: one ``run_model`` of the ``levels**4`` designs of the sweep (10,000
   by default; the reference chords are moved by 0.1 % between the three timed
-  runs), per design;
+  runs), per design; the local-point variants solve their stations on
+  several threads (:func:`bild_mdo.utils.compiled.num_threads`) and are timed
+  once more, interleaved, on one (``BILD_MDO_NUM_THREADS=1``);
 * a thrust target: ``design_rotor(thrust=T)`` against ``design_rotor(ref_chord=c)``
   of the same variant (``T`` the variant's own thrust at ``c``, the solve
   starting from the model's last reference chord), both with the model
@@ -26,11 +28,12 @@ served from a cache):
   ``run_model`` of the same design, and its ratio to that ``run_model``.
 
 Every time is given as wall time (``time.perf_counter``) and CPU time of this
-thread (``time.thread_time``); every ratio to the paper's BILD is of the same
+process, all its threads (``time.process_time``); every ratio to the paper's BILD is of the same
 run.  Issue 23's targets for the Reynolds-aware exact loading are printed
 beside its ratios.  Nothing is asserted: on a shared machine, repeat the run.
 """
 import argparse
+import os
 import statistics
 import sys
 import time
@@ -46,6 +49,7 @@ from bild_speed import INPUTS, OF, paper_sweep, set_design, single_designs  # no
 from bild_mdo.airfoil import naca4412  # noqa: E402
 from bild_mdo.bild import BILDGroup  # noqa: E402
 from bild_mdo.results.design import design_rotor  # noqa: E402
+from bild_mdo.utils.compiled import num_threads  # noqa: E402
 
 NUM_RADIAL = 30
 VARIANTS = (("reference", "paper"), ("reference", "exact"), ("local", "paper"), ("local", "exact"))
@@ -57,9 +61,9 @@ TARGETS = {"one": 3.0, "batch": 5.0, "thrust": 3.0, "fwd": 3.0, "rev": 3.0}
 
 def clocks(function):
     """``(wall, cpu)`` seconds of one call."""
-    wall, cpu = time.perf_counter(), time.thread_time()
+    wall, cpu = time.perf_counter(), time.process_time()
     function()
-    return time.perf_counter() - wall, time.thread_time() - cpu
+    return time.perf_counter() - wall, time.process_time() - cpu
 
 
 def problem(variant, values, polar, mode="auto", **options):
@@ -93,15 +97,28 @@ def batch(sweep, polar):
     for prob in probs.values():
         prob.run_model()
     samples = {v: [] for v in VARIANTS}
+    single = {v: [] for v in VARIANTS[2:]}
     nn = sweep["rpm"].size
+    setting = os.environ.get("BILD_MDO_NUM_THREADS")
     for k in range(3):
-        moved = dict(sweep, ref_chord=sweep["ref_chord"] * (1.0 + 1e-3 * (k + 1)))
         for v, prob in probs.items():
-            set_design(prob, moved)
+            set_design(prob, dict(sweep, ref_chord=sweep["ref_chord"] * (1.0 + 1e-3 * (k + 1))))
             wall, cpu = clocks(prob.run_model)
             samples[v].append((wall / nn, cpu / nn))
+            if v in single:  # the local-point solves once more on one thread (other inputs again)
+                set_design(prob, dict(sweep, ref_chord=sweep["ref_chord"] * (1.0 - 1e-3 * (k + 1))))
+                os.environ["BILD_MDO_NUM_THREADS"] = "1"
+                try:
+                    wall, cpu = clocks(prob.run_model)
+                finally:
+                    if setting is None:
+                        del os.environ["BILD_MDO_NUM_THREADS"]
+                    else:
+                        os.environ["BILD_MDO_NUM_THREADS"] = setting
+                single[v].append((wall / nn, cpu / nn))
     feasible = {v: int(np.sum(prob.get_val("feasible"))) for v, prob in probs.items()}
-    return {v: median_pair(s) for v, s in samples.items()}, feasible
+    return ({v: median_pair(s) for v, s in samples.items()}, {v: median_pair(s) for v, s in single.items()},
+            feasible)
 
 
 def _rotor_kwargs(design):
@@ -195,9 +212,14 @@ def main():
     _ratio_line("one design (run_model, num_nodes = 1)", one, "ms", 1e3, "one")
 
     if not args.skip_batch:
-        per, feasible = batch(sweep, polar)
-        _ratio_line(f"batch of {sweep['rpm'].size} designs (one run_model), per design", per, "us", 1e6, "batch",
-                    lambda v: f"   feasible {feasible[v]}")
+        per, single, feasible = batch(sweep, polar)
+        _ratio_line(f"batch of {sweep['rpm'].size} designs (one run_model), per design; the local-point solves on "
+                    f"{num_threads()} threads", per, "us", 1e6, "batch", lambda v: f"   feasible {feasible[v]}")
+        base = per[VARIANTS[0]]
+        print("  the same on one thread (BILD_MDO_NUM_THREADS=1):")
+        for v, (wall, cpu) in single.items():
+            print(f"  {NAMES[v]:<40} {wall * 1e6:9.3f} us (CPU {cpu * 1e6:9.3f})   x paper: {wall / base[0]:6.2f} "
+                  f"(CPU {cpu / base[1]:6.2f})")
 
     timing, error, failed = thrust_target(designs, polar, args.repeats)
     _ratio_line("design_rotor at c_ref (model cached)", {v: t[0] for v, t in timing.items()}, "ms", 1e3)

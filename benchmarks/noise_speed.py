@@ -8,7 +8,7 @@ of every design (about 3.5 MB per design), so 10,000 at once need about 35 GB, m
 the cost per design is the same at 625 and 1,296 designs.  Two problems are set up (set-up excluded from the times): :class:`~bild_mdo.bild.BILDGroup` alone,
 and the same group with one observer (10 m below the rotor on its axis), 10 blade-passage harmonics and the
 broadband BPM sources in the 31 one-third-octave bands 20 Hz - 20 kHz (24 azimuths), its
-``noise_observers`` option.  Each ``run_model`` is timed (wall time and CPU time of this thread, the median of
+``noise_observers`` option.  Each ``run_model`` is timed (wall time and CPU time of this process, the median of
 ``--repeats`` runs, the reference chords moved by 0.1 % between them so that nothing is served from a cache);
 the noise costs the difference, and the ratio noise / BILD is printed beside the issue's target (at most 1).
 Nothing is asserted: on a shared machine, repeat the run.
@@ -42,9 +42,9 @@ def problem(sweep, noise):
 
 
 def clocks(function):
-    wall, cpu = time.perf_counter(), time.thread_time()
+    wall, cpu = time.perf_counter(), time.process_time()
     function()
-    return time.perf_counter() - wall, time.thread_time() - cpu
+    return time.perf_counter() - wall, time.process_time() - cpu
 
 
 def main(argv=None):

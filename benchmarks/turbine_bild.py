@@ -18,8 +18,8 @@ altitude 0 ... 2000 m (three blades, hub 0.05 R, reference station 0.7 R).  Two 
 family are timed: the design for maximum power (``design_for='multiplier'``, multiplier 0) and the member
 at a given reference chord (``design_for='ref_chord'``, 80 % of the maximum-power design's), the counterpart of the
 propeller BILD's input ``ref_chord``.  Every time is given as wall time (``time.perf_counter``) and CPU
-time of this thread (``time.thread_time``); ratios are to the propeller BILD of the same run.  Nothing is
-asserted: on a shared machine, repeat the run.
+time of this process, all its threads (``time.process_time``); ratios are to the propeller BILD of the same
+run.  Nothing is asserted: on a shared machine, repeat the run.
 """
 import argparse
 import sys

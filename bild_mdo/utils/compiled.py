@@ -33,6 +33,8 @@ import os
 from importlib.metadata import version
 from pathlib import Path
 
+import numpy as np
+
 from bild_mdo.utils.cache_folder import cache_dir
 
 #: The modules of compiled functions (relative to the package), whose source keys the cache.
@@ -139,3 +141,54 @@ def bracketed_newton_for(function):
         return x, False, fa, da, max_iter + 1
 
     return kernel(solve)
+
+
+#: Stations a thread of :func:`run_in_threads` gets at least (fewer, and the solve stays on the calling thread:
+#: about 4 ms of work at 2 us a station, against some 0.1 ms to hand a chunk to a thread).
+MIN_CHUNK = 2048
+_POOL = {}
+
+
+def num_threads():
+    """Threads a compiled solve of many stations may use: the environment variable ``BILD_MDO_NUM_THREADS``
+    where it is set (1: never a thread), else the CPUs this process may run on, at most 8."""
+    setting = os.environ.get("BILD_MDO_NUM_THREADS", "").strip()
+    if setting:
+        try:
+            count = int(setting)
+        except ValueError:
+            count = 0
+        if count < 1:
+            raise ValueError(f"BILD_MDO_NUM_THREADS must be a whole number >= 1, not {setting!r}")
+        return count
+    try:
+        available = len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        available = os.cpu_count() or 1
+    return max(1, min(available, 8))
+
+
+def run_in_threads(solve, starts, count):
+    """Call ``solve(begin, end)`` on chunks of the ``count`` stations, one per thread (:func:`num_threads`), each
+    beginning at one of the sorted indices ``starts`` (where a solve may begin without changing any result: the
+    first station of a design), and wait for all; one call on the calling thread where the stations are too few
+    for two chunks of :data:`MIN_CHUNK`.  The compiled solves release the GIL (``nogil``), so the chunks run in
+    parallel; each writes only its own stations, so the result is the one of a single call, bit for bit."""
+    threads = min(num_threads(), count // MIN_CHUNK)
+    bounds = [0]
+    if threads > 1 and starts.size:
+        targets = (np.arange(1, threads) * count) // threads
+        bounds += [b for b in np.unique(starts[np.minimum(np.searchsorted(starts, targets), starts.size - 1)])
+                   if 0 < b < count]
+    bounds.append(count)
+    chunks = list(zip(bounds[:-1], bounds[1:]))
+    if len(chunks) == 1:
+        solve(0, count)
+        return
+    pool = _POOL.get(len(chunks))
+    if pool is None:
+        from concurrent.futures import ThreadPoolExecutor
+
+        pool = _POOL[len(chunks)] = ThreadPoolExecutor(len(chunks), thread_name_prefix="bild-mdo")
+    for future in [pool.submit(solve, begin, end) for begin, end in chunks]:
+        future.result()

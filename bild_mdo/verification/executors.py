@@ -87,7 +87,10 @@ def _mp_context():
 
 
 def _watch_parent():
-    """Worker initializer: exit when the sweep process is gone, so a killed sweep leaves no orphans."""
+    """Worker initializer: exit when the sweep process is gone, so a killed sweep leaves no orphans; and, unless
+    the user set ``BILD_MDO_NUM_THREADS``, one thread per compiled solve (the workers already share the cores:
+    :func:`bild_mdo.utils.compiled.num_threads`)."""
+    os.environ.setdefault("BILD_MDO_NUM_THREADS", "1")
     parent = multiprocessing.parent_process()
     if parent is None:
         return

@@ -53,8 +53,8 @@ from bild_mdo.utils.compiled import kernel
 
 
 @kernel
-def solve_all(table, flow, num_blades, torque, loss, settings, out):
-    """Solve every station (module docstring).
+def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
+    """Solve stations ``begin`` to ``end - 1`` (module docstring; ``begin`` the first station of a design).
 
     ``flow[8, n]``: the stations (:func:`~bild_mdo.bild.variants.local_point.kernels.station_setup`; the bracket
     ends at ``eta2 = 1/2`` with ``cd/cl = 0``); the first angle is the paper loading's at ``start_ratio``, at
@@ -76,7 +76,7 @@ def solve_all(table, flow, num_blades, torque, loss, settings, out):
     c = np.zeros(_PARAMS_SIZE)
     c[_X_FIRST], c[_TORQUE], c[_LOSS], c[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
     trail = np.zeros(6)
-    for j in range(flow.shape[1]):
+    for j in range(begin, end):
         row = out[:, j]
         for q in range(4, 10):
             row[q] = math.nan

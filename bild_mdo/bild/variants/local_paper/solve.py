@@ -135,10 +135,13 @@ def paper_jets(table, flow, x0, label, seed=True):
 def solve_stations(table, flow):
     """:class:`PaperSolution` at every station (flat real inputs; module docstring)."""
     from bild_mdo.bild.variants.local_paper.kernel import solve_all
-    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, table_arrays
+    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, design_starts, table_arrays
+    from bild_mdo.utils.compiled import run_in_threads
 
     out = np.empty((10, flow.r.size))
     settings = np.array([BARRIER, _MAX_ITERATIONS, ANGLE_TOL, ROOT_STEP, START_RATIO, LOWEST_RATIO, SWITCHES])
-    solve_all(table_arrays(table), flow_rows(flow), flow.num_blades, flow.chord_form == "torque",
-              LOSS_CODES[flow.loss_model], settings, out)
+    rows, arrays = flow_rows(flow), table_arrays(table)
+    torque, loss = flow.chord_form == "torque", LOSS_CODES[flow.loss_model]
+    run_in_threads(lambda begin, end: solve_all(arrays, rows, flow.num_blades, torque, loss, settings, begin, end,
+                                                out), design_starts(rows), flow.r.size)
     return PaperSolution(out[1], out[2].astype(int), out[3].astype(int), out[4:].T)

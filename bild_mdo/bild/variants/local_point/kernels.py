@@ -339,6 +339,14 @@ def trail_begin(trail, flow, j):
         trail[_KNOWN] = 0.0
 
 
+def design_starts(flow):
+    """The stations of ``flow`` where :func:`trail_begin` forgets the trail (the first of a design): a solve may
+    begin there without changing any station's result (:func:`bild_mdo.utils.compiled.run_in_threads`)."""
+    lam, vx, r, radius = flow[0], flow[1], flow[3], flow[4]
+    goes_on = (r[1:] > r[:-1]) & (radius[1:] == radius[:-1]) & (lam[1:] == lam[:-1]) & (vx[1:] == vx[:-1])
+    return np.concatenate(([0], 1 + np.flatnonzero(~goes_on)))
+
+
 @kernel
 def trail_prediction(trail, r):
     """``(label, offset)`` the trail predicts at radius ``r`` (linear in ``r`` from two stations, constant from

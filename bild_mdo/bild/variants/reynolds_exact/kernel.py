@@ -64,8 +64,8 @@ from bild_mdo.bild.variants.local_point.sheet_solve import (
 from bild_mdo.utils.compiled import kernel
 
 @kernel
-def solve_all(table, flow, num_blades, guess, first_label, torque, loss, settings, probes, search, out):
-    """Solve every station (module docstring).
+def solve_all(table, flow, num_blades, guess, first_label, torque, loss, settings, probes, search, begin, end, out):
+    """Solve stations ``begin`` to ``end - 1`` (module docstring; ``begin`` the first station of a design).
 
     ``flow[8, n]``: the stations (:func:`~bild_mdo.bild.variants.local_point.kernels.station_setup`); the first
     angle is the paper loading's at ``start_ratio``; ``guess, first_label[n]``: a warm start (NaN, -1: none; empty
@@ -91,7 +91,7 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     c[_X_FIRST], c[_TORQUE], c[_LOSS] = x_first, 1.0 if torque else 0.0, loss
     trail = np.zeros(6)
     warm_any = guess.size > 0
-    for j in range(out.shape[1]):
+    for j in range(begin, end):
         row = out[:, j]
         for q in range(5, 11):
             row[q] = math.nan

@@ -97,8 +97,9 @@ def solve_stations(table, flow, start=None, first_label=None):
     ``start, first_label`` (optional): a warm start, e.g. the last pass of a thrust-target solve: on sheet
     ``first_label`` the solve begins at the angle ``start`` (NaN, -1: none).
     """
-    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, table_arrays
+    from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, design_starts, table_arrays
     from bild_mdo.bild.variants.reynolds_exact.kernel import solve_all
+    from bild_mdo.utils.compiled import run_in_threads
 
     n = flow.v_theta.size
     if start is None:  # no warm start anywhere: empty arrays
@@ -112,8 +113,10 @@ def solve_stations(table, flow, start=None, first_label=None):
     settings = np.array([BARRIER, _MAX_ITERATIONS, ANGLE_TOL, ROOT_STEP, START_RATIO, PRUNE_FACTOR, FOLD_WINDOW,
                          FOLD_MARGIN])
     frac = np.linspace(0.0, 1.0, SEARCH_POINTS + 2)[1:-1]
-    solve_all(table_arrays(table), flow_rows(flow), flow.num_blades, guess, first, flow.chord_form == "torque",
-              LOSS_CODES[flow.loss_model], settings, np.array(PROBE_STEPS), frac, out)
+    rows, arrays, probes = flow_rows(flow), table_arrays(table), np.array(PROBE_STEPS)
+    torque, loss = flow.chord_form == "torque", LOSS_CODES[flow.loss_model]
+    run_in_threads(lambda begin, end: solve_all(arrays, rows, flow.num_blades, guess, first, torque, loss, settings,
+                                                probes, frac, begin, end, out), design_starts(rows), n)
     return StationSolution(out[0], out[1], out[2].astype(int), out[3].astype(int), out[5:].T)
 
 
