@@ -16,8 +16,8 @@ DOCS = pathlib.Path(__file__).resolve().parent
 REPO = DOCS.parent
 
 
-def build(outdir, jobs="2", quiet=False):
-    """Build the site into ``outdir``; return ``(returncode, warnings text, seconds)``."""
+def start(outdir, jobs="2", quiet=False):
+    """Start building the site into ``outdir`` in a subprocess; :func:`finish` waits for it."""
     outdir = pathlib.Path(outdir).resolve()
     source = outdir / "source"
     if source.exists():
@@ -32,11 +32,21 @@ def build(outdir, jobs="2", quiet=False):
            "-w", str(warnings), "-d", str(outdir / "doctrees"), str(source), str(outdir / "html")]
     if quiet:
         cmd.insert(3, "-q")
-    start = time.perf_counter()
-    proc = subprocess.run(cmd, env=env, cwd=outdir)
-    seconds = time.perf_counter() - start
+    return subprocess.Popen(cmd, env=env, cwd=outdir), warnings, time.perf_counter()
+
+
+def finish(started):
+    """``(returncode, warnings text, seconds)`` of a build begun by :func:`start`, once it has ended."""
+    proc, warnings, begun = started
+    code = proc.wait()
+    seconds = time.perf_counter() - begun
     text = warnings.read_text() if warnings.exists() else ""
-    return proc.returncode, text, seconds
+    return code, text, seconds
+
+
+def build(outdir, jobs="2", quiet=False):
+    """Build the site into ``outdir``; return ``(returncode, warnings text, seconds)``."""
+    return finish(start(outdir, jobs, quiet))
 
 
 def main(argv=None):
