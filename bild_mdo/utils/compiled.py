@@ -149,9 +149,15 @@ MIN_CHUNK = 2048
 _POOL = {}
 
 
+#: Environment variables in which MPI launchers give the number of ranks on this machine (Open MPI, MPICH and
+#: Intel MPI) or in the whole run.
+_MPI_RANKS = ("OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "OMPI_COMM_WORLD_SIZE", "PMI_SIZE")
+
+
 def num_threads():
     """Threads a compiled solve of many stations may use: the environment variable ``BILD_MDO_NUM_THREADS``
-    where it is set (1: never a thread), else the CPUs this process may run on, at most 8."""
+    where it is set (1: never a thread), else the CPUs this process may run on, at most 8, shared among the
+    MPI ranks of a run under ``mpirun`` (one each where they are as many as the CPUs)."""
     setting = os.environ.get("BILD_MDO_NUM_THREADS", "").strip()
     if setting:
         try:
@@ -165,6 +171,11 @@ def num_threads():
         available = len(os.sched_getaffinity(0))
     except AttributeError:  # not on Linux
         available = os.cpu_count() or 1
+    for name in _MPI_RANKS:
+        ranks = os.environ.get(name, "").strip()
+        if ranks.isdigit() and int(ranks) > 1:
+            available //= int(ranks)
+            break
     return max(1, min(available, 8))
 
 

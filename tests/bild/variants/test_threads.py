@@ -96,6 +96,9 @@ def test_the_thread_setting(monkeypatch):
     assert num_threads() == 2
     monkeypatch.delenv("BILD_MDO_NUM_THREADS")
     assert 1 <= num_threads() <= 8
+    monkeypatch.setenv("OMPI_COMM_WORLD_LOCAL_SIZE", "64")  # 64 MPI ranks on this machine: one thread each
+    assert num_threads() == 1
+    monkeypatch.delenv("OMPI_COMM_WORLD_LOCAL_SIZE")
     for bad in ("0", "two", "-1"):
         monkeypatch.setenv("BILD_MDO_NUM_THREADS", bad)
         with pytest.raises(ValueError, match="BILD_MDO_NUM_THREADS must be a whole number >= 1"):
