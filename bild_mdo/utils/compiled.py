@@ -19,6 +19,9 @@ arithmetic; those run as numba-compiled loops over the elements instead
   gives inf, never an exception; LLVM may fuse a multiply and an add and multiply
   by a reciprocal, which changes round-off only: NaN, infinities and the sign of
   zero keep their meaning);
+* provides :func:`run_in_threads`, which runs a compiled solve of many stations in chunks on several
+  threads (:func:`num_threads`, the environment variable ``BILD_MDO_NUM_THREADS``), bit for bit the
+  result of one call;
 * provides :func:`bracketed_newton_for`, the algorithm of
   :func:`bild_mdo.utils.newton.bracketed_newton` for one element, step for
   step (the same Newton step, the same bisection fallback, the same
@@ -146,7 +149,6 @@ def bracketed_newton_for(function):
 #: Stations a thread of :func:`run_in_threads` gets at least (fewer, and the solve stays on the calling thread:
 #: about 4 ms of work at 2 us a station, against some 0.1 ms to hand a chunk to a thread).
 MIN_CHUNK = 2048
-_POOL = {}
 
 
 #: Environment variables in which MPI launchers give the number of ranks on this machine (Open MPI, MPICH and
@@ -177,6 +179,10 @@ def num_threads():
             available //= int(ranks)
             break
     return max(1, min(available, 8))
+
+
+#: The thread pools of :func:`run_in_threads`, by their number of threads.
+_POOL = {}
 
 
 def run_in_threads(solve, starts, count):

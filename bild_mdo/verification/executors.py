@@ -86,11 +86,15 @@ def _mp_context():
     return multiprocessing.get_context("spawn")
 
 
-def _watch_parent():
-    """Worker initializer: exit when the sweep process is gone, so a killed sweep leaves no orphans; and, unless
-    the user set ``BILD_MDO_NUM_THREADS``, one thread per compiled solve (the workers already share the cores:
-    :func:`bild_mdo.utils.compiled.num_threads`)."""
+def _init_worker():
+    """Worker initializer: one thread per compiled solve unless the user set ``BILD_MDO_NUM_THREADS`` (the workers
+    already share the cores: :func:`bild_mdo.utils.compiled.num_threads`), and :func:`_watch_parent`."""
     os.environ.setdefault("BILD_MDO_NUM_THREADS", "1")
+    _watch_parent()
+
+
+def _watch_parent():
+    """Exit when the sweep process is gone, so a killed sweep leaves no orphans."""
     parent = multiprocessing.parent_process()
     if parent is None:
         return
@@ -113,7 +117,7 @@ def _probe(pickled_fn):
 
 
 def _start_pool(fn, workers):
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(), initializer=_watch_parent)
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=_mp_context(), initializer=_init_worker)
     try:
         pool.submit(_probe, pickle.dumps(fn)).result()
     except BrokenProcessPool as exc:
