@@ -16,8 +16,9 @@ DOCS = pathlib.Path(__file__).resolve().parent
 REPO = DOCS.parent
 
 
-def start(outdir, jobs="2", quiet=False):
-    """Start building the site into ``outdir`` in a subprocess; :func:`finish` waits for it."""
+def start(outdir, jobs="2", quiet=False, log=None):
+    """Start building the site into ``outdir`` in a subprocess; :func:`finish` waits for it.  With ``log`` (a
+    path) the build's own output goes to that file, not to this process's terminal."""
     outdir = pathlib.Path(outdir).resolve()
     source = outdir / "source"
     if source.exists():
@@ -32,15 +33,22 @@ def start(outdir, jobs="2", quiet=False):
            "-w", str(warnings), "-d", str(outdir / "doctrees"), str(source), str(outdir / "html")]
     if quiet:
         cmd.insert(3, "-q")
-    return subprocess.Popen(cmd, env=env, cwd=outdir), warnings, time.perf_counter()
+    if log is None:
+        return subprocess.Popen(cmd, env=env, cwd=outdir), warnings, time.perf_counter(), None
+    with open(log, "w") as stream:  # the child keeps its own copy of the file
+        proc = subprocess.Popen(cmd, env=env, cwd=outdir, stdout=stream, stderr=subprocess.STDOUT)
+    return proc, warnings, time.perf_counter(), pathlib.Path(log)
 
 
 def finish(started):
-    """``(returncode, warnings text, seconds)`` of a build begun by :func:`start`, once it has ended."""
-    proc, warnings, begun = started
+    """``(returncode, warnings text, seconds)`` of a build begun by :func:`start`, once it has ended; a failed
+    build with a ``log`` adds the end of its output to the warnings text."""
+    proc, warnings, begun, log = started
     code = proc.wait()
     seconds = time.perf_counter() - begun
     text = warnings.read_text() if warnings.exists() else ""
+    if code != 0 and log is not None and log.exists():
+        text += "\n--- the build's output (end) ---\n" + log.read_text()[-4000:]
     return code, text, seconds
 
 

@@ -29,7 +29,8 @@ def pytest_collection_modifyitems(session, config, items):
 
     module = docs_build_module()
     folder = tempfile.TemporaryDirectory(prefix="bild-mdo-test-docs-")
-    DOCS_BUILD["build"] = (module, module.start(folder.name, quiet=True), folder)
+    log = pathlib.Path(folder.name) / "build-output.txt"  # not the terminal, where pytest reports
+    DOCS_BUILD["build"] = (module, module.start(folder.name, quiet=True, log=log), folder)
 
 
 def pytest_unconfigure(config):
