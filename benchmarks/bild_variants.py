@@ -1,6 +1,6 @@
 """The four BILD variants side by side: one design, a batch, a thrust target and total derivatives.
 
-Run:  .venv/bin/python benchmarks/bild_variants.py [--repeats 25] [--levels 10] [--skip-batch]
+Run:  .venv/bin/python benchmarks/bild_variants.py [--repeats 25] [--levels 10] [--batch-repeats 5] [--skip-batch]
 
 The variants are :class:`~bild_mdo.bild.BILDGroup`'s ``(section_point,
 ideal_loading)`` pairs: the paper's BILD (reference point, paper loading), the
@@ -13,10 +13,11 @@ served from a cache):
 
 * one design: ``run_model`` with ``num_nodes = 1`` (median of the repeats);
 * a batch: one ``run_model`` of the ``levels**4`` designs of the sweep (10,000
-  by default; the reference chords are moved by 0.1 % between the three timed
-  runs), per design; the local-point variants solve their stations on
-  several threads (:func:`bild_mdo.utils.compiled.num_threads`) and are timed
-  once more, interleaved, on one (``BILD_MDO_NUM_THREADS=1``);
+  by default; the reference chords are moved by 0.1 % between the timed runs,
+  ``--batch-repeats``, 5 by default, their median), per design; the
+  local-point variants solve their stations on several threads
+  (:func:`bild_mdo.utils.compiled.num_threads`) and are timed once more,
+  interleaved, on one (``BILD_MDO_NUM_THREADS=1``);
 * a thrust target: ``design_rotor(thrust=T)`` against ``design_rotor(ref_chord=c)``
   of the same variant (``T`` the variant's own thrust at ``c``, the solve
   starting from the model's last reference chord), both with the model
@@ -92,7 +93,7 @@ def one_design(designs, polar, repeats):
     return {v: median_pair(s) for v, s in samples.items()}
 
 
-def batch(sweep, polar):
+def batch(sweep, polar, repeats):
     probs = {v: problem(v, sweep, polar, on_infeasible="flag") for v in VARIANTS}
     for prob in probs.values():
         prob.run_model()
@@ -100,7 +101,7 @@ def batch(sweep, polar):
     single = {v: [] for v in VARIANTS[2:]}
     nn = sweep["rpm"].size
     setting = os.environ.get("BILD_MDO_NUM_THREADS")
-    for k in range(3):
+    for k in range(repeats):
         for v, prob in probs.items():
             set_design(prob, dict(sweep, ref_chord=sweep["ref_chord"] * (1.0 + 1e-3 * (k + 1))))
             wall, cpu = clocks(prob.run_model)
@@ -199,6 +200,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=25)
     parser.add_argument("--levels", type=int, default=10, help="levels of the batch sweep (levels**4 designs)")
+    parser.add_argument("--batch-repeats", type=int, default=5, help="timed runs of each batch (their median)")
     parser.add_argument("--skip-batch", action="store_true")
     args = parser.parse_args()
     warnings.simplefilter("ignore")
@@ -212,7 +214,7 @@ def main():
     _ratio_line("one design (run_model, num_nodes = 1)", one, "ms", 1e3, "one")
 
     if not args.skip_batch:
-        per, single, feasible = batch(sweep, polar)
+        per, single, feasible = batch(sweep, polar, args.batch_repeats)
         _ratio_line(f"batch of {sweep['rpm'].size} designs (one run_model), per design; the local-point solves on "
                     f"{num_threads()} threads", per, "us", 1e6, "batch", lambda v: f"   feasible {feasible[v]}")
         base = per[VARIANTS[0]]
