@@ -14,6 +14,7 @@ sweep must do so under ``if __name__ == '__main__':``.  On Dask, tasks wait
 for workers: a cluster that has lost all its workers stalls the sweep until
 workers join again (Dask's semantics); the rows stored so far stay valid.
 """
+import functools
 import multiprocessing
 import os
 import pickle
@@ -232,12 +233,19 @@ def check_scheduler_address(scheduler):
     return address
 
 
+def _one_thread_each(fn, argument):
+    """``fn(argument)`` with one thread per compiled solve unless the worker's environment sets
+    ``BILD_MDO_NUM_THREADS``: a Dask worker runs as many tasks side by side as it has threads."""
+    os.environ.setdefault("BILD_MDO_NUM_THREADS", "1")
+    return fn(argument)
+
+
 def _run_dask(fn, tasks, scheduler):
     check_picklable(fn, "a Dask cluster")
     client, owned = connect_dask(scheduler)
     from dask.distributed import as_completed
 
-    return _dask_results(client, owned, fn, tasks, as_completed)
+    return _dask_results(client, owned, functools.partial(_one_thread_each, fn), tasks, as_completed)
 
 
 def _dask_results(client, own_client, fn, tasks, as_completed):

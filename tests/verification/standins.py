@@ -80,6 +80,11 @@ def sleep_echo(task):
     return task[0]
 
 
+def thread_setting(task):
+    """The worker's ``BILD_MDO_NUM_THREADS`` (None where unset)."""
+    return os.environ.get("BILD_MDO_NUM_THREADS")
+
+
 def echo_after_file(task):
     """``task = (value, wait_for, create)``: wait until file ``wait_for`` exists (if given), create
     file ``create`` (if given), then return the value.  Orders two workers without timing assumptions."""

@@ -1,5 +1,6 @@
 """The sweep on a real dask.distributed LocalCluster with worker processes."""
 import functools
+import os
 import sys
 
 import pytest
@@ -41,6 +42,16 @@ def test_sweep_through_scheduler_address(tmp_path, cluster_address):
             assert "stand-in failure" in row["error"]
         else:
             assert row["opt_time"] >= 0.02  # the sleep ran on a worker and was timed there
+
+
+def test_dask_tasks_solve_on_one_thread_each(cluster_address):
+    # A Dask worker runs as many tasks side by side as it has threads: unless its environment says otherwise,
+    # a task's compiled solves use one thread (bild_mdo.utils.compiled.num_threads).
+    from bild_mdo.verification.executors import run_tasks
+
+    expected = os.environ.get("BILD_MDO_NUM_THREADS", "1")  # the workers inherit this process's environment
+    results = list(run_tasks(standins.thread_setting, [(0, 0), (1, 1)], scheduler=cluster_address))
+    assert sorted(value for _, value, _ in results) == [expected, expected]
 
 
 def test_chunked_sweep_through_scheduler_address(tmp_path, cluster_address):

@@ -47,3 +47,13 @@ def test_workers_that_cannot_import_the_function_fail_clearly(tmp_path, monkeypa
 def test_invalid_workers():
     with pytest.raises(ValueError, match="workers must be >= 1"):
         run_tasks(standins.sleep_echo, [], workers=0)
+
+
+def test_worker_processes_solve_on_one_thread_each():
+    # The workers share the cores already: unless the environment says otherwise, their compiled solves use one
+    # thread each (bild_mdo.utils.compiled.num_threads).
+    import os
+
+    expected = os.environ.get("BILD_MDO_NUM_THREADS", "1")
+    results = list(run_tasks(standins.thread_setting, [(0, 0), (1, 1)], workers=2))
+    assert sorted(value for _, value, _ in results) == [expected, expected]
