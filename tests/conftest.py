@@ -12,14 +12,17 @@ import os
 import pathlib
 import tempfile
 
+import pytest
+
 _CACHE = tempfile.TemporaryDirectory(prefix="bild-mdo-test-cache-")
 os.environ["BILD_MDO_CACHE_DIR"] = _CACHE.name
 
 _DOCS_TESTS = pathlib.Path(__file__).resolve().parent / "docs"
-#: The background build of the site: ``(build module, started build, output folder)``, or None.
+#: The background build of the site, under "build": ``(build module, started build, output folder)``.
 DOCS_BUILD = {}
 
 
+@pytest.hookimpl(trylast=True)  # after -k / -m have deselected what they deselect
 def pytest_collection_modifyitems(session, config, items):
     docs = [item for item in items if _DOCS_TESTS in pathlib.Path(str(item.path)).parents]
     if not docs or config.option.collectonly:
