@@ -103,3 +103,12 @@ def test_the_thread_setting(monkeypatch):
         monkeypatch.setenv("BILD_MDO_NUM_THREADS", bad)
         with pytest.raises(ValueError, match="BILD_MDO_NUM_THREADS must be a whole number >= 1"):
             compiled.num_threads()
+
+
+def test_a_bad_thread_setting_is_one_line_of_the_cli(capsys, monkeypatch):
+    from tests.cli.runner import run
+
+    monkeypatch.setenv("BILD_MDO_NUM_THREADS", "two")
+    code, out, err = run(capsys, "design", "--section-point", "local", "--radius", "1.5", "--ref-chord", "0.1")
+    assert code == 2 and "Traceback" not in err
+    assert "BILD_MDO_NUM_THREADS must be a whole number >= 1, not 'two'" in err and len(err.strip().splitlines()) == 1
