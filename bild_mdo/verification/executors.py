@@ -87,10 +87,15 @@ def _mp_context():
     return multiprocessing.get_context("spawn")
 
 
-def _init_worker():
-    """Worker initializer: one thread per compiled solve unless the user set ``BILD_MDO_NUM_THREADS`` (the workers
-    already share the cores: :func:`bild_mdo.utils.compiled.num_threads`), and :func:`_watch_parent`."""
+def _one_thread_per_solve():
+    """One thread per compiled solve unless the user set ``BILD_MDO_NUM_THREADS``: worker processes and Dask
+    tasks already run side by side, one per core (:func:`bild_mdo.utils.compiled.num_threads`)."""
     os.environ.setdefault("BILD_MDO_NUM_THREADS", "1")
+
+
+def _init_worker():
+    """Worker initializer: :func:`_one_thread_per_solve` and :func:`_watch_parent`."""
+    _one_thread_per_solve()
     _watch_parent()
 
 
@@ -234,9 +239,9 @@ def check_scheduler_address(scheduler):
 
 
 def _one_thread_each(fn, argument):
-    """``fn(argument)`` with one thread per compiled solve unless the worker's environment sets
-    ``BILD_MDO_NUM_THREADS``: a Dask worker runs as many tasks side by side as it has threads."""
-    os.environ.setdefault("BILD_MDO_NUM_THREADS", "1")
+    """``fn(argument)`` on a Dask worker, after :func:`_one_thread_per_solve` (a worker runs as many tasks side by
+    side as it has threads)."""
+    _one_thread_per_solve()
     return fn(argument)
 
 

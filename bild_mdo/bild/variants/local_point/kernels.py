@@ -332,19 +332,35 @@ _KNOWN, _OFF1, _OFF2, _R1, _R2, _LABEL = range(6)
 
 
 @kernel
+def continues_design(flow, j):
+    """Whether station ``j`` of ``flow`` continues the design of station ``j - 1`` outward (the same radius,
+    lambda and V_x, a larger r)."""
+    return (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
+            and flow[1, j] == flow[1, j - 1])
+
+
+@kernel
 def trail_begin(trail, flow, j):
     """Forget the trail unless station ``j`` of ``flow`` continues the design of station ``j - 1`` outward."""
-    if not (j > 0 and flow[3, j] > flow[3, j - 1] and flow[4, j] == flow[4, j - 1] and flow[0, j] == flow[0, j - 1]
-            and flow[1, j] == flow[1, j - 1]):
+    if not continues_design(flow, j):
         trail[_KNOWN] = 0.0
+
+
+@kernel
+def _first_stations(flow, starts):
+    count = 0
+    for j in range(flow.shape[1]):
+        if not continues_design(flow, j):
+            starts[count] = j
+            count += 1
+    return count
 
 
 def design_starts(flow):
     """The stations of ``flow`` where :func:`trail_begin` forgets the trail (the first of a design): a solve may
     begin there without changing any station's result (:func:`bild_mdo.utils.compiled.run_in_threads`)."""
-    lam, vx, r, radius = flow[0], flow[1], flow[3], flow[4]
-    goes_on = (r[1:] > r[:-1]) & (radius[1:] == radius[:-1]) & (lam[1:] == lam[:-1]) & (vx[1:] == vx[:-1])
-    return np.concatenate(([0], 1 + np.flatnonzero(~goes_on)))
+    starts = np.empty(flow.shape[1], dtype=np.int64)
+    return starts[:_first_stations(flow, starts)]
 
 
 @kernel
