@@ -13,6 +13,10 @@ differs from it by (zero to the pitch solve's tolerance where the pitch holds ra
 the energy of region 3 carries no quadrature error.  The wind speeds are inputs of their own
 (their dependence on ``V_in, V_r, V_out`` comes through the connection), the interval limits
 enter through the half-widths.  Below cut-in and above cut-out the rotor makes nothing.
+
+With option ``tip_speed_limit`` region 2 is the sum of two Lobatto rules, on ``[V_in, V_k]`` and
+``[V_k, V_r]`` (``V_k``, input ``tip_speed_limit_wind_speed``, where region 2.5 begins,
+:mod:`bild_mdo.energy.wind_speeds`).
 """
 from __future__ import annotations
 
@@ -20,16 +24,23 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.energy.annual_energy import HOURS_PER_YEAR, weibull_density, weibull_survival
-from bild_mdo.energy.wind_speeds import declare_wind_speed_option, lobatto, region_sizes
+from bild_mdo.energy.wind_speeds import (
+    declare_tip_speed_limit_option,
+    declare_wind_speed_option,
+    lobatto,
+    region2_split,
+    region_sizes,
+)
 
 _YEAR = HOURS_PER_YEAR * 3600.0
 #: Largest relative difference from rated power accepted at the rated point and in region 3 (a failed trim).
 TRIM_RTOL = 1e-6
 _LIMITS = ("cut_in_speed", "rated_wind_speed", "cut_out_speed")
 _NODE_INPUTS = _LIMITS + ("rated_power", "weibull_scale", "weibull_shape")
-_UNITS = {"cut_in_speed": "m/s", "rated_wind_speed": "m/s", "cut_out_speed": "m/s", "rated_power": "W",
+_KNEE = "tip_speed_limit_wind_speed"
+_UNITS = {_KNEE: "m/s", "cut_in_speed": "m/s", "rated_wind_speed": "m/s", "cut_out_speed": "m/s", "rated_power": "W",
           "weibull_scale": "m/s", "weibull_shape": None}
-_DEFAULTS = {"cut_in_speed": 3.0, "rated_wind_speed": 11.0, "cut_out_speed": 25.0, "rated_power": 5.0e6,
+_DEFAULTS = {_KNEE: 11.0, "cut_in_speed": 3.0, "rated_wind_speed": 11.0, "cut_out_speed": 25.0, "rated_power": 5.0e6,
              "weibull_scale": 8.0, "weibull_shape": 2.0}
 
 
@@ -44,13 +55,15 @@ class CurveEnergyComp(om.ExplicitComponent):
         Points of the curve (:func:`~bild_mdo.energy.wind_speeds.region_sizes`).
     check_trim : bool
         True (default): raise where the curve does not hold rated power from the rated point on.
+    tip_speed_limit : bool
+        False (default); True: region 2 in two intervals, split at input ``tip_speed_limit_wind_speed``.
 
     Inputs
     ------
     wind_speed[nn, nw] (m/s), power[nn, nw] (W)
         The power curve.
     cut_in_speed[nn] (m/s), rated_wind_speed[nn] (m/s), cut_out_speed[nn] (m/s), rated_power[nn] (W),
-    weibull_scale[nn] (m/s), weibull_shape[nn] (-)
+    weibull_scale[nn] (m/s), weibull_shape[nn] (-); tip_speed_limit_wind_speed[nn] (m/s) (``tip_speed_limit``)
 
     Outputs
     -------
@@ -69,6 +82,7 @@ class CurveEnergyComp(om.ExplicitComponent):
         declare_wind_speed_option(self.options)
         self.options.declare("check_trim", types=bool, default=True,
                              desc="raise where the rated point or region 3 does not hold rated power")
+        declare_tip_speed_limit_option(self.options)
 
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
@@ -76,33 +90,44 @@ class CurveEnergyComp(om.ExplicitComponent):
         self.add_input("wind_speed", val=np.linspace(3.0, 25.0, nw)[None, :].repeat(nn, axis=0), units="m/s",
                        desc="wind speeds of the power curve")
         self.add_input("power", val=np.full((nn, nw), 1.0e6), units="W", desc="power at each wind speed")
-        for name in _NODE_INPUTS:
+        limited = self.options["tip_speed_limit"]
+        self._node_inputs = _NODE_INPUTS + ((_KNEE,) if limited else ())
+        for name in self._node_inputs:
             self.add_input(name, val=np.full(nn, _DEFAULTS[name]), units=_UNITS[name])
         self.add_output("annual_energy", val=np.ones(nn), units="J", ref=1e13, desc="annual energy production")
         self.add_output("capacity_factor", val=np.ones(nn), units=None, desc="AEP / (8760 h rated power)")
-        w2, w3 = lobatto(n2)[1], lobatto(n3)[1]
-        # Quadrature weight of each point in its region (the rated point, index n2 - 1, is in both).
-        self._w2 = np.concatenate((w2, np.zeros(n3 - 1)))
-        self._w3 = np.concatenate((np.zeros(n2 - 1), w3))
+        # The intervals of region 2 (lower and upper limit, the quadrature weight of each point of the curve).
+        if limited:
+            n2a, n2b = region2_split(n2)
+            self._intervals = [("cut_in_speed", _KNEE, np.concatenate((lobatto(n2a)[1], np.zeros(nw - n2a)))),
+                               (_KNEE, "rated_wind_speed", np.concatenate((np.zeros(n2a - 1), lobatto(n2b)[1],
+                                                                           np.zeros(n3 - 1))))]
+        else:
+            self._intervals = [("cut_in_speed", "rated_wind_speed", np.concatenate((lobatto(n2)[1],
+                                                                                    np.zeros(n3 - 1))))]
+        # Quadrature weight of each point in region 3 (the rated point, index n2 - 1, is in region 2 too).
+        self._w3 = np.concatenate((np.zeros(n2 - 1), lobatto(n3)[1]))
         rows_d, cols_d = np.repeat(np.arange(nn), nw), np.arange(nn * nw)
         rows = np.arange(nn)
         for out in ("annual_energy", "capacity_factor"):
             self.declare_partials(out, ["wind_speed", "power"], rows=rows_d, cols=cols_d)
-            self.declare_partials(out, list(_NODE_INPUTS), rows=rows, cols=rows)
+            self.declare_partials(out, list(self._node_inputs), rows=rows, cols=rows)
 
     def _terms(self, inputs):
-        v_in, v_r, v_out = (inputs[name] for name in _LIMITS)
+        v_r, v_out = inputs["rated_wind_speed"], inputs["cut_out_speed"]
         p_r, c, k = inputs["rated_power"], inputs["weibull_scale"], inputs["weibull_shape"]
         power = inputs["power"]
         f, f_v, f_c, f_k = weibull_density(inputs["wind_speed"], c[:, None], k[:, None])
-        h2, h3 = 0.5 * (v_r - v_in), 0.5 * (v_out - v_r)
+        # w2[nn, nw]: each point's weight in region 2, its Lobatto weight times its interval's half-width.
+        w2 = sum(0.5 * (inputs[hi] - inputs[lo])[:, None] * w[None, :] for lo, hi, w in self._intervals)
+        sums2 = [(power * f) @ w for _, _, w in self._intervals]
+        h3 = 0.5 * (v_out - v_r)
         excess = power - p_r[:, None]
         s_r, s_o = weibull_survival(v_r, c, k), weibull_survival(v_out, c, k)
-        sum2 = (power * f) @ self._w2
         sum3 = (excess * f) @ self._w3
-        energy = _YEAR * (h2 * sum2 + p_r * (s_r[0] - s_o[0]) + h3 * sum3)
-        return dict(p_r=p_r, power=power, excess=excess, f=f, f_v=f_v, f_c=f_c, f_k=f_k, h2=h2, h3=h3,
-                    s_r=s_r, s_o=s_o, sum2=sum2, sum3=sum3, energy=energy)
+        energy = _YEAR * (np.sum(w2 * power * f, axis=1) + p_r * (s_r[0] - s_o[0]) + h3 * sum3)
+        return dict(p_r=p_r, power=power, excess=excess, f=f, f_v=f_v, f_c=f_c, f_k=f_k, w2=w2, sums2=sums2, h3=h3,
+                    s_r=s_r, s_o=s_o, sum3=sum3, energy=energy)
 
     def _check(self, inputs):
         for name in ("rated_power", "weibull_scale", "weibull_shape", "cut_in_speed"):
@@ -135,20 +160,22 @@ class CurveEnergyComp(om.ExplicitComponent):
 
     def compute_partials(self, inputs, partials):
         t = self._terms(inputs)
-        h2, h3, p_r = t["h2"][:, None], t["h3"][:, None], t["p_r"]
-        w2, w3 = self._w2[None, :], self._w3[None, :]
-        d = {"power": _YEAR * (h2 * w2 + h3 * w3) * t["f"],
-             "wind_speed": _YEAR * (h2 * w2 * t["power"] + h3 * w3 * t["excess"]) * t["f_v"]}
-        d_in = _YEAR * -0.5 * t["sum2"]
-        d_vr = _YEAR * (0.5 * t["sum2"] - 0.5 * t["sum3"] + p_r * t["s_r"][1])
-        d_out = _YEAR * (0.5 * t["sum3"] - p_r * t["s_o"][1])
+        h3, p_r, w2 = t["h3"][:, None], t["p_r"], t["w2"]
+        w3 = self._w3[None, :]
+        d = {"power": _YEAR * (w2 + h3 * w3) * t["f"],
+             "wind_speed": _YEAR * (w2 * t["power"] + h3 * w3 * t["excess"]) * t["f_v"]}
+        node = {name: np.zeros_like(p_r) for name in self._node_inputs}
+        for (lo, hi, _), total in zip(self._intervals, t["sums2"]):
+            node[lo] = node[lo] - 0.5 * _YEAR * total
+            node[hi] = node[hi] + 0.5 * _YEAR * total
+        node["rated_wind_speed"] = node["rated_wind_speed"] + _YEAR * (-0.5 * t["sum3"] + p_r * t["s_r"][1])
+        node["cut_out_speed"] = _YEAR * (0.5 * t["sum3"] - p_r * t["s_o"][1])
         d_pr = _YEAR * (t["s_r"][0] - t["s_o"][0] - t["h3"] * (t["f"] @ self._w3))
-        shape = {}
+        node["rated_power"] = d_pr
         for j, name in ((2, "weibull_scale"), (3, "weibull_shape")):
             df = t[("f_c", "f_k")[j - 2]]
-            shape[name] = _YEAR * (t["h2"] * ((t["power"] * df) @ self._w2) + t["h3"] * ((t["excess"] * df) @ self._w3)
-                                   + p_r * (t["s_r"][j] - t["s_o"][j]))
-        node = {"cut_in_speed": d_in, "rated_wind_speed": d_vr, "cut_out_speed": d_out, "rated_power": d_pr, **shape}
+            node[name] = _YEAR * (np.sum(w2 * t["power"] * df, axis=1) + t["h3"] * ((t["excess"] * df) @ self._w3)
+                                  + p_r * (t["s_r"][j] - t["s_o"][j]))
         scale = 1.0 / (_YEAR * p_r)
         for name, value in d.items():
             partials["annual_energy", name] = value.ravel()

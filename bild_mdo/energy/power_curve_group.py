@@ -6,7 +6,7 @@ OpenMDAO components.  For each of ``num_nodes`` rotors (a blade ``chord[nn, nr]`
     [atmosphere]  AtmosphereComp            altitude -> rho, mu, speed_of_sound  (use_atmosphere)
     rated         RatedSpeedGroup           V_r: BEM power at lambda, pitch 0 = P_r     (Newton, implicit)
     wind          WindSpeedsComp            Gauss-Lobatto nodes on [V_in, V_r] and [V_r, V_out]
-    speed         RotorSpeedComp            Omega = lambda min(V, V_r) / R
+    speed         RotorSpeedComp            Omega = lambda min(V, V_r) / R  (at most V_tip,max / R)
     region2_blade RotorBroadcastComp        the blade and the fluid at every wind speed (and region3_blade)
     region2       InclinedBEMGroup          turbine BEM at the region-2 nodes, pitch 0
     region3       PitchTrimGroup            turbine BEM at the region-3 nodes, pitch solved: power = P_r (Newton)
@@ -19,8 +19,13 @@ Mach-dependent polar) change ``C_P`` along the curve.  The rated wind speed is w
 reaches ``rated_power`` (:class:`~bild_mdo.energy.rated_speed.RatedSpeedGroup`).  Region 3 (rated to
 cut-out): the rotor holds its rated speed and the collective pitch, solved per wind speed, holds
 the rated power, pitching to feather (positive pitch lowers the angle of attack;
-:mod:`bild_mdo.energy.pitch_trim`).  No rotor-speed or tip-speed limit (region 2.5), drivetrain
-losses or availability are modelled; the year is 8760 h.
+:mod:`bild_mdo.energy.pitch_trim`).  With option ``tip_speed_limit`` the rotor speed is also held
+where the tip speed reaches input ``max_tip_speed`` (region 2.5, WISDEM's ``control_maxTS``):
+from ``V_k = max_tip_speed / lambda`` to rated the rotor turns at ``max_tip_speed / R`` at zero
+pitch, its tip-speed ratio falls below the design one, and rated power is reached where that
+rotor's power reaches it; region 2 is then integrated on ``[V_in, V_k]`` and ``[V_k, V_r]``
+(:mod:`bild_mdo.energy.wind_speeds`; output ``tip_speed_limit_wind_speed``).  No drivetrain
+losses or availability are modelled (``rated_power`` is the aerodynamic power); the year is 8760 h.
 
 Difference from :class:`~bild_mdo.energy.annual_energy.AnnualEnergyComp`: that component takes one
 ``C_P`` for all of region 2 and assumes rated power above rated without computing a pitch; this
@@ -41,6 +46,8 @@ use_atmosphere : bool
     True (default): input ``altitude``; False: inputs ``rho``, ``mu``, ``speed_of_sound``.
 pitch_bounds : tuple of float
     (lower, upper) of the region-3 pitch (rad), default :data:`~bild_mdo.energy.pitch_trim.PITCH_BOUNDS`.
+tip_speed_limit : bool
+    False (default); True: input ``max_tip_speed`` (region 2.5).
 
 Inputs
 ------
@@ -52,14 +59,21 @@ weibull_scale[nn] (m/s), weibull_shape[nn] (-)
     Weibull ``c`` and ``k`` (``k = 2``: Rayleigh).
 altitude[nn] (m), or rho[nn] (kg/m**3), mu[nn] (Pa*s), speed_of_sound[nn] (m/s)
     ISA altitude (``use_atmosphere``) or the fluid.
+max_tip_speed[nn] (m/s)
+    Largest tip speed ``Omega R`` (``tip_speed_limit``; default 80 m/s).
 
 Outputs
 -------
 rated_wind_speed[nn] (m/s)
-    Where the BEM power at the design tip-speed ratio and zero pitch reaches rated power.
+    Where the BEM power at the design tip-speed ratio (the tip-speed limit's rotor speed beyond ``V_k``) and
+    zero pitch reaches rated power.
 wind_speed[nn, nw] (m/s), rpm[nn, nw] (rpm), collective_pitch[nn, nw] (rad), power[nn, nw] (W), thrust[nn, nw] (N)
     The power curve, also ``torque[nn, nw] (N*m)``, ``power_coefficient[nn, nw]``, ``thrust_coefficient[nn, nw]``;
     index ``n2 - 1`` (:func:`~bild_mdo.energy.wind_speeds.region_sizes`) is the rated point.
+tip_speed_limit_wind_speed[nn] (m/s)
+    Where region 2.5 begins, ``min(max_tip_speed / lambda, V_r)`` (``tip_speed_limit``; the rated wind speed
+    where the limit is not reached below rated); index ``n2a - 1``
+    (:func:`~bild_mdo.energy.wind_speeds.region2_split`).
 annual_energy[nn] (J), capacity_factor[nn] (-)
     AEP over the Weibull wind (``get_val(..., units="GW*h")``) and ``AEP / (8760 h P_r)``.
 
@@ -85,7 +99,12 @@ from bild_mdo.energy.pitch_trim import PITCH_BOUNDS, PitchTrimGroup
 from bild_mdo.energy.rated_speed import RatedSpeedGroup
 from bild_mdo.energy.rotor_broadcast import BROADCAST_DISTRIBUTIONS, BROADCAST_SCALARS, RotorBroadcastComp
 from bild_mdo.energy.rotor_speed import RotorSpeedComp
-from bild_mdo.energy.wind_speeds import WindSpeedsComp, declare_wind_speed_option, region_sizes
+from bild_mdo.energy.wind_speeds import (
+    WindSpeedsComp,
+    declare_tip_speed_limit_option,
+    declare_wind_speed_option,
+    region_sizes,
+)
 from bild_mdo.utils.options import declare_size_options
 
 _BLADE = ("chord", "twist", "radius", "hub_radius")
@@ -95,7 +114,7 @@ _WIND = ("cut_in_speed", "cut_out_speed", "weibull_scale", "weibull_shape")
 _DEFAULTS = {"tip_speed_ratio": (7.0, None), "rated_power": (5.0e6, "W"), "cut_in_speed": (3.0, "m/s"),
              "cut_out_speed": (25.0, "m/s"), "weibull_scale": (8.0, "m/s"), "weibull_shape": (2.0, None),
              "radius": (63.0, "m"), "hub_radius": (3.0, "m"), "altitude": (0.0, "m"), "rho": (1.225, "kg/m**3"),
-             "mu": (1.789e-5, "Pa*s"), "speed_of_sound": (340.294, "m/s")}
+             "mu": (1.789e-5, "Pa*s"), "speed_of_sound": (340.294, "m/s"), "max_tip_speed": (80.0, "m/s")}
 
 
 class PowerCurveGroup(om.Group):
@@ -114,25 +133,30 @@ class PowerCurveGroup(om.Group):
         self.options.declare("use_atmosphere", types=bool, default=True,
                              desc="rho, mu and speed_of_sound from the ISA at input altitude (else inputs)")
         self.options.declare("pitch_bounds", default=PITCH_BOUNDS, desc="(lower, upper) of the region-3 pitch (rad)")
+        declare_tip_speed_limit_option(self.options)
 
     def setup(self):
         opts = self.options
         nn, nr, nw = opts["num_nodes"], opts["num_radial"], opts["num_wind_speeds"]
         n2, n3 = region_sizes(nw)
+        limited = opts["tip_speed_limit"]
+        tip = ["max_tip_speed"] if limited else []
         polar = resolve_polar("naca4412") if opts["polar"] is None else opts["polar"]
         bem = dict(num_radial=nr, num_blades=opts["num_blades"], polar=polar, loss_model=opts["loss_model"],
                    on_invalid=opts["on_invalid"])
         if opts["use_atmosphere"]:
             self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn), promotes_inputs=["altitude"],
                                promotes_outputs=list(_FLUID))
-        self.add_subsystem("rated", RatedSpeedGroup(num_nodes=nn, **bem),
-                           promotes_inputs=list(_BLADE + _FLUID) + ["tip_speed_ratio", "rated_power"],
+        self.add_subsystem("rated", RatedSpeedGroup(num_nodes=nn, tip_speed_limit=limited, **bem),
+                           promotes_inputs=list(_BLADE + _FLUID) + ["tip_speed_ratio", "rated_power"] + tip,
                            promotes_outputs=["rated_wind_speed"])
-        self.add_subsystem("wind", WindSpeedsComp(num_nodes=nn, num_wind_speeds=nw),
-                           promotes_inputs=["cut_in_speed", "rated_wind_speed", "cut_out_speed"],
-                           promotes_outputs=["wind_speed"])
-        self.add_subsystem("speed", RotorSpeedComp(num_nodes=nn, num_points=nw),
-                           promotes_inputs=["wind_speed", "tip_speed_ratio", "radius", "rated_wind_speed"],
+        knee = ["tip_speed_limit_wind_speed"] if limited else []
+        self.add_subsystem("wind", WindSpeedsComp(num_nodes=nn, num_wind_speeds=nw, tip_speed_limit=limited),
+                           promotes_inputs=["cut_in_speed", "rated_wind_speed", "cut_out_speed"]
+                           + (tip + ["tip_speed_ratio"] if limited else []),
+                           promotes_outputs=["wind_speed"] + knee)
+        self.add_subsystem("speed", RotorSpeedComp(num_nodes=nn, num_points=nw, tip_speed_limit=limited),
+                           promotes_inputs=["wind_speed", "tip_speed_ratio", "radius", "rated_wind_speed"] + tip,
                            promotes_outputs=["rpm"])
         for region, size in (("region2", n2), ("region3", n3 - 1)):
             self.add_subsystem(f"{region}_blade", RotorBroadcastComp(num_nodes=nn, num_radial=nr, num_points=size),
@@ -143,8 +167,8 @@ class PowerCurveGroup(om.Group):
                                                      **bem))
         self.add_subsystem("curve", CurveAssemblyComp(num_nodes=nn, num_wind_speeds=nw),
                            promotes_outputs=list(CURVE_OUTPUTS) + ["collective_pitch"])
-        self.add_subsystem("energy", CurveEnergyComp(num_nodes=nn, num_wind_speeds=nw),
-                           promotes_inputs=["wind_speed", "power", "rated_wind_speed", "rated_power", *_WIND],
+        self.add_subsystem("energy", CurveEnergyComp(num_nodes=nn, num_wind_speeds=nw, tip_speed_limit=limited),
+                           promotes_inputs=["wind_speed", "power", "rated_wind_speed", "rated_power", *_WIND, *knee],
                            promotes_outputs=["annual_energy", "capacity_factor"])
 
         index = np.arange(nn * nw).reshape(nn, nw)
@@ -160,7 +184,7 @@ class PowerCurveGroup(om.Group):
         self.promotes("region3", inputs=["rated_power"], src_indices=np.repeat(np.arange(nn), n3 - 1),
                       flat_src_indices=True, src_shape=(nn,))
 
-        names = list(_BLADE) + ["tip_speed_ratio", "rated_power", *_WIND]
+        names = list(_BLADE) + ["tip_speed_ratio", "rated_power", *_WIND, *tip]
         names += ["altitude"] if opts["use_atmosphere"] else list(_FLUID)
         for name in names:
             if name in ("chord", "twist"):

@@ -9,6 +9,7 @@ from bild_mdo.bem.metrics import TURBINE_OUTPUTS
 from bild_mdo.energy.pitch_trim import BEM_INPUTS, NEWTON_ATOL, ExplainedNewton, declare_turbine_bem_options
 from bild_mdo.energy.rated_wind_speed import RatedWindSpeedComp
 from bild_mdo.energy.rotor_speed import RotorSpeedComp
+from bild_mdo.energy.wind_speeds import declare_tip_speed_limit_option
 from bild_mdo.utils.options import declare_size_options
 
 #: Power coefficient of the first guess of the rated wind speed (any positive value converges).
@@ -20,7 +21,7 @@ class RatedSpeedGroup(om.Group):
 
     ::
 
-        speed   RotorSpeedComp(capped=False)   rpm = lambda V_r / R
+        speed   RotorSpeedComp(capped=False)   rpm = lambda V_r / R  (min(lambda V_r, V_tip,max) / R: tip_speed_limit)
         bem     InclinedBEMGroup(turbine)      power at (V_r, rpm), pitch 0
         rated   RatedWindSpeedComp             V_r (P_r / P)**(1/3) = V_r
 
@@ -29,15 +30,22 @@ class RatedSpeedGroup(om.Group):
     (the residual is nearly linear in ``V_r``, :mod:`bild_mdo.energy.rated_wind_speed`).  The other
     BEM outputs at rated (``thrust`` ... of :data:`~bild_mdo.bem.metrics.TURBINE_OUTPUTS`) are outputs too.
 
+    With option ``tip_speed_limit`` the rotor turns at most at ``max_tip_speed / R``, so rated power may be
+    reached in region 2.5 (the power still grows with the wind speed there, more slowly than ``V**3``; the
+    residual stays monotonic).
+
     Options
     -------
     num_nodes, num_radial, num_blades, polar, loss_model, on_invalid
         Rotors and the options of :class:`~bild_mdo.bem.inclined_bem_group.InclinedBEMGroup`.
+    tip_speed_limit : bool
+        False (default); True: input ``max_tip_speed``.
 
     Inputs
     ------
     tip_speed_ratio[nn] (-), rated_power[nn] (W), chord[nn, nr] (m), twist[nn, nr] (rad), radius[nn] (m),
-    hub_radius[nn] (m), rho[nn] (kg/m**3), mu[nn] (Pa*s), speed_of_sound[nn] (m/s)
+    hub_radius[nn] (m), rho[nn] (kg/m**3), mu[nn] (Pa*s), speed_of_sound[nn] (m/s); max_tip_speed[nn] (m/s)
+    (``tip_speed_limit``)
 
     Outputs
     -------
@@ -48,12 +56,14 @@ class RatedSpeedGroup(om.Group):
     def initialize(self):
         declare_size_options(self.options)
         declare_turbine_bem_options(self.options)
+        declare_tip_speed_limit_option(self.options)
 
     def setup(self):
         opts = self.options
         nn, nr = opts["num_nodes"], opts["num_radial"]
-        self.add_subsystem("speed", RotorSpeedComp(num_nodes=nn, capped=False),
-                           promotes_inputs=["tip_speed_ratio", "radius"])
+        limited = opts["tip_speed_limit"]
+        self.add_subsystem("speed", RotorSpeedComp(num_nodes=nn, capped=False, tip_speed_limit=limited),
+                           promotes_inputs=["tip_speed_ratio", "radius"] + (["max_tip_speed"] if limited else []))
         self.add_subsystem("bem", InclinedBEMGroup(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
                                                    polar=opts["polar"], loss_model=opts["loss_model"],
                                                    on_invalid=opts["on_invalid"], rotor_type="turbine",

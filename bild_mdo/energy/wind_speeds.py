@@ -8,6 +8,15 @@ integral of each region is exact for polynomials of degree ``2n - 3`` (Abramowit
 ``[0, 1]``, so their partials are constants.  The rated point is shared: the curve has
 ``num_wind_speeds = n2 + n3 - 1`` points, ``n2 = (num_wind_speeds + 1) // 2`` in region 2
 (indices ``0 .. n2 - 1``, the last one rated) and the rest in region 3.
+
+With option ``tip_speed_limit`` region 2 is split where the tip speed ``lambda V`` reaches
+``max_tip_speed`` (region 2.5 beyond it: the rotor speed held at its limit, the power still below
+rated), ``V_k = min(V_tip,max / lambda, V_r)``: the first ``n2a = (n2 + 1) // 2`` points are the
+Lobatto nodes of ``[V_in, V_k]``, the rest of region 2 those of ``[V_k, V_r]`` (``V_k`` shared), so
+neither interval's integrand has the kink of the rotor speed inside it.  Where the limit is not
+reached below rated, ``V_k = V_r`` and the second interval has length zero (its points repeat the
+rated point, with no weight).  ``V_k`` depends on ``max_tip_speed`` and ``lambda`` where the limit
+binds, on ``V_r`` where it does not (a kink where ``V_tip,max = lambda V_r``).
 """
 from __future__ import annotations
 
@@ -41,10 +50,23 @@ def region_sizes(num_wind_speeds):
     return n2, num_wind_speeds + 1 - n2
 
 
+def region2_split(n2):
+    """``(n2a, n2b)``: Lobatto nodes of the two intervals of region 2 with a tip-speed limit (the point where
+    the limit is reached counted in both, ``n2a + n2b - 1 = n2``)."""
+    n2a = (n2 + 1) // 2
+    return n2a, n2 - n2a + 1
+
+
 def declare_wind_speed_option(options):
     """Declare ``num_wind_speeds`` (points of the power curve, cut-in to cut-out)."""
     options.declare("num_wind_speeds", types=int, default=13, lower=MIN_WIND_SPEEDS,
                     desc="points of the power curve from cut-in to cut-out (Gauss-Lobatto nodes of regions 2 and 3)")
+
+
+def declare_tip_speed_limit_option(options):
+    """Declare ``tip_speed_limit`` (hold the rotor speed at ``max_tip_speed``: region 2.5)."""
+    options.declare("tip_speed_limit", types=bool, default=False,
+                    desc="hold the rotor speed where the tip speed reaches input max_tip_speed (region 2.5)")
 
 
 def check_rated_inside(v_in, v_rated, v_out, where):
@@ -62,7 +84,8 @@ def check_rated_inside(v_in, v_rated, v_out, where):
         side, fix = (("is not reached below the cut-out speed", "lower the rated power or enlarge the rotor") if above
                      else ("is reached below the cut-in speed", "raise the rated power or shrink the rotor"))
         raise om.AnalysisError(
-            f"{where}: at its design tip-speed ratio with zero pitch the rotor's BEM power reaches the rated power "
+            f"{where}: at its design tip-speed ratio (up to any tip-speed limit) with zero pitch the rotor's BEM "
+            "power reaches the rated power "
             f"at {v_rated[i]:.6g} m/s, which {side} (cut-in {v_in[i]:.6g} m/s, cut-out {v_out[i]:.6g} m/s; "
             f"rotor {i}): {fix}")
 
@@ -76,25 +99,34 @@ class WindSpeedsComp(om.ExplicitComponent):
         Rotors (axis 0).
     num_wind_speeds : int
         Points of the curve (at least 5).
+    tip_speed_limit : bool
+        False (default); True: region 2 in two intervals split where the tip speed reaches ``max_tip_speed``.
 
     Inputs
     ------
-    cut_in_speed[nn] (m/s), rated_wind_speed[nn] (m/s), cut_out_speed[nn] (m/s)
+    cut_in_speed[nn] (m/s), rated_wind_speed[nn] (m/s), cut_out_speed[nn] (m/s);
+    max_tip_speed[nn] (m/s), tip_speed_ratio[nn] (-) (``tip_speed_limit``)
 
     Outputs
     -------
     wind_speed[nn, nw] (m/s)
         Ascending; ``wind_speed[:, 0]`` cut-in, ``[:, n2 - 1]`` rated, ``[:, -1]`` cut-out.
+    tip_speed_limit_wind_speed[nn] (m/s) (``tip_speed_limit``)
+        ``V_k = min(max_tip_speed / tip_speed_ratio, rated_wind_speed)``: where region 2.5 begins (the rated
+        wind speed where the limit is not reached below it); ``wind_speed[:, n2a - 1]``
+        (:func:`region2_split`).
 
     Raises
     ------
     openmdao.api.AnalysisError
-        Unless ``cut_in_speed < rated_wind_speed < cut_out_speed``.
+        Unless ``cut_in_speed < rated_wind_speed < cut_out_speed``, and, with the limit, unless the tip speed
+        reaches it above cut-in.
     """
 
     def initialize(self):
         self.options.declare("num_nodes", types=int, default=1, lower=1, desc="rotors (axis 0)")
         declare_wind_speed_option(self.options)
+        declare_tip_speed_limit_option(self.options)
 
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
@@ -102,16 +134,68 @@ class WindSpeedsComp(om.ExplicitComponent):
         for name, val in (("cut_in_speed", 3.0), ("rated_wind_speed", 11.0), ("cut_out_speed", 25.0)):
             self.add_input(name, val=np.full(nn, val), units="m/s")
         self.add_output("wind_speed", val=np.ones((nn, nw)), units="m/s", desc="wind speeds of the power curve")
-        t2 = 0.5 * (lobatto(n2)[0] + 1.0)
         t3 = 0.5 * (lobatto(n3)[0][1:] + 1.0)
-        # d V / d (cut-in, rated, cut-out) at each point, the same for every rotor.
-        self._weights = {"cut_in_speed": np.concatenate((1.0 - t2, np.zeros(n3 - 1))),
-                         "rated_wind_speed": np.concatenate((t2, 1.0 - t3)),
-                         "cut_out_speed": np.concatenate((np.zeros(n2), t3))}
         rows, cols = np.arange(nn * nw), np.repeat(np.arange(nn), nw)
-        for name, value in self._weights.items():
-            self.declare_partials("wind_speed", name, rows=rows, cols=cols, val=np.tile(value, nn))
+        limited = self.options["tip_speed_limit"]
+        if limited:
+            n2a, n2b = region2_split(n2)
+            t2a, t2b = 0.5 * (lobatto(n2a)[0] + 1.0), 0.5 * (lobatto(n2b)[0][1:] + 1.0)
+            # d V / d (cut-in, V_k, rated, cut-out) at each point.
+            self._weights = {"cut_in_speed": np.concatenate((1.0 - t2a, np.zeros(n2b - 1 + n3 - 1))),
+                             "knee": np.concatenate((t2a, 1.0 - t2b, np.zeros(n3 - 1))),
+                             "rated_wind_speed": np.concatenate((np.zeros(n2a), t2b, 1.0 - t3)),
+                             "cut_out_speed": np.concatenate((np.zeros(n2), t3))}
+            self.add_input("max_tip_speed", val=np.full(nn, 90.0), units="m/s", desc="largest tip speed Omega R")
+            self.add_input("tip_speed_ratio", val=np.full(nn, 7.0), units=None, desc="design tip-speed ratio")
+            self.add_output("tip_speed_limit_wind_speed", val=np.full(nn, 11.0), units="m/s",
+                            desc="wind speed where the tip speed reaches max_tip_speed (at most the rated one)")
+            node = np.arange(nn)
+            self.declare_partials("tip_speed_limit_wind_speed", ["max_tip_speed", "tip_speed_ratio",
+                                                                 "rated_wind_speed"], rows=node, cols=node)
+            for name in ("cut_in_speed", "cut_out_speed"):
+                self.declare_partials("wind_speed", name, rows=rows, cols=cols, val=np.tile(self._weights[name], nn))
+            self.declare_partials("wind_speed", ["rated_wind_speed", "max_tip_speed", "tip_speed_ratio"], rows=rows,
+                                  cols=cols)
+        else:
+            t2 = 0.5 * (lobatto(n2)[0] + 1.0)
+            # d V / d (cut-in, rated, cut-out) at each point, the same for every rotor.
+            self._weights = {"cut_in_speed": np.concatenate((1.0 - t2, np.zeros(n3 - 1))),
+                             "rated_wind_speed": np.concatenate((t2, 1.0 - t3)),
+                             "cut_out_speed": np.concatenate((np.zeros(n2), t3))}
+            for name, value in self._weights.items():
+                self.declare_partials("wind_speed", name, rows=rows, cols=cols, val=np.tile(value, nn))
+
+    def _knee(self, inputs):
+        """``V_k`` and whether the limit binds (real parts); AnalysisError where it binds at or below cut-in."""
+        reached = inputs["max_tip_speed"] / inputs["tip_speed_ratio"]
+        binds = np.real(reached) < np.real(inputs["rated_wind_speed"])
+        early = ~(np.real(reached) > np.real(inputs["cut_in_speed"]))
+        if np.any(early):
+            i = int(np.flatnonzero(early)[0])
+            raise om.AnalysisError(
+                f"{self.msginfo}: the tip speed reaches max_tip_speed {np.real(inputs['max_tip_speed'][i]):.6g} m/s "
+                f"at {np.real(reached[i]):.6g} m/s, not above the cut-in speed "
+                f"{np.real(inputs['cut_in_speed'][i]):.6g} m/s (rotor {i}): raise max_tip_speed or lower the "
+                "tip-speed ratio")
+        return np.where(binds, reached, inputs["rated_wind_speed"]), binds
 
     def compute(self, inputs, outputs):
         check_rated_inside(inputs["cut_in_speed"], inputs["rated_wind_speed"], inputs["cut_out_speed"], self.msginfo)
-        outputs["wind_speed"] = sum(inputs[name][:, None] * value[None, :] for name, value in self._weights.items())
+        limits = {name: inputs[name] for name in ("cut_in_speed", "rated_wind_speed", "cut_out_speed")}
+        if self.options["tip_speed_limit"]:
+            limits["knee"], _ = self._knee(inputs)
+            outputs["tip_speed_limit_wind_speed"] = limits["knee"]
+        outputs["wind_speed"] = sum(limits[name][:, None] * value[None, :] for name, value in self._weights.items())
+
+    def compute_partials(self, inputs, partials):
+        if not self.options["tip_speed_limit"]:
+            return
+        _, binds = self._knee(inputs)
+        tsr = inputs["tip_speed_ratio"]
+        d_knee = {"max_tip_speed": np.where(binds, 1.0 / tsr, 0.0),
+                  "tip_speed_ratio": np.where(binds, -inputs["max_tip_speed"] / tsr ** 2, 0.0),
+                  "rated_wind_speed": np.where(binds, 0.0, 1.0)}
+        for name, value in d_knee.items():
+            partials["tip_speed_limit_wind_speed", name] = value
+            direct = self._weights["rated_wind_speed"][None, :] if name == "rated_wind_speed" else 0.0
+            partials["wind_speed", name] = (direct + value[:, None] * self._weights["knee"][None, :]).ravel()
