@@ -28,14 +28,15 @@ from bild_mdo.optimization import optimize_rotor
 from bild_mdo.optimization.ipopt_driver import IpoptDriver
 from bild_mdo.results import DesignResult, OffDesignResult, design_rotor, off_design_sweep
 from bild_mdo.results.noise import NoiseResult, combine_noise, rotor_noise
+from bild_mdo.results.power_curve import PowerCurve, power_curve
 from bild_mdo.results.turbine_design import TurbineDesign, design_turbine
 
 __all__ = [
     "AnalyticPolar", "AnnualEnergyComp", "AtmosphereComp", "BEMAnalysisGroup", "BEMResult", "BEMStateWarning", "BILDGroup",
     "CompressiblePolar", "DesignResult", "IpoptDriver", "MILGroup", "MachTabulatedPolar",
-    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "PowerCurveGroup", "RotorGeometry",
+    "MultipointRotorGroup", "NoiseResult", "OffDesignResult", "Polar", "PowerCurve", "PowerCurveGroup", "RotorGeometry",
     "RotorNoiseGroup",
     "SpanwisePolar", "TabulatedPolar", "TipMachWarning", "TurbineBILDGroup", "TurbineDesign", "__version__",
     "analyze_rotor", "combine_noise", "design_mil", "design_rotor", "design_turbine", "get_polar", "isa", "naca4412", "off_design_sweep", "optimize_rotor",
-    "read_geometry", "resolve_polar", "rotor_noise", "spanwise_polar", "write_geometry",
+    "power_curve", "read_geometry", "resolve_polar", "rotor_noise", "spanwise_polar", "write_geometry",
 ]

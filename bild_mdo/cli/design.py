@@ -174,6 +174,9 @@ def run_design(args, out):
     """
     if args.turbine:
         return run_turbine(args, out)
+    for option in ("rated_power", "max_tip_speed"):
+        if getattr(args, option, None) is not None:
+            raise ValueError(f"--{option.replace('_', '-')} belongs to a turbine's power curve: give it with --turbine")
     speed = ({"advance_ratio": _scalar_or_list(args.advance_ratio)} if args.advance_ratio is not None
              else {"v_axial": _scalar_or_list(args.v_axial)})
     names = [option[2:].replace("-", "_") for option, *_ in _BATCH_OPTIONS]  # argparse's dest of each option

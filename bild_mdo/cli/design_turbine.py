@@ -4,7 +4,9 @@ The turbine shares the design subcommand's sizing options (``--radius``, ``--hub
 ``--ref-radius-ratio``, ``--ref-chord``, ``--thrust``, ``--altitude``, ``--fluid``, ``--num-blades``,
 ``--airfoil``, ``--num-radial``, ``--loss-model``) and adds its own: ``--turbine``, ``--wind-speed`` and
 ``--tip-speed-ratio`` (or ``--turbine-rpm``).  Without ``--thrust`` or ``--ref-chord`` the design extracts the
-most power at the tip-speed ratio.
+most power at the tip-speed ratio.  With ``--rated-power`` each design's power curve and annual energy follow
+(:meth:`~bild_mdo.results.turbine_design.TurbineDesign.power_curve`: ``--max-tip-speed``, ``--weibull-scale``,
+``--weibull-shape``, ``--cut-in-speed``, ``--cut-out-speed``).
 """
 from __future__ import annotations
 
@@ -30,6 +32,16 @@ def add_turbine_arguments(parser):
                        help="tip-speed ratio Omega R / V [-] (with --turbine; default 7)")
     speed.add_argument("--turbine-rpm", type=float, nargs="+", default=None, metavar="RPM",
                        help="rotor speed [rpm] instead of --tip-speed-ratio (with --turbine)")
+    curve = parser.add_argument_group("power curve and annual energy (--turbine --rated-power P)")
+    curve.add_argument("--rated-power", type=float, default=None, metavar="P",
+                       help="rated power [W]: print each design's power curve (pitch trimmed above rated) and AEP")
+    curve.add_argument("--max-tip-speed", type=float, default=None, metavar="V",
+                       help="largest tip speed [m/s] (region 2.5; default: no limit)")
+    for option, default, text in (("--weibull-scale", 8.0, "Weibull scale c of the wind [m/s]"),
+                                  ("--weibull-shape", 2.0, "Weibull shape k [-] (2: Rayleigh)"),
+                                  ("--cut-in-speed", 3.0, "cut-in wind speed [m/s]"),
+                                  ("--cut-out-speed", 25.0, "cut-out wind speed [m/s]")):
+        curve.add_argument(option, type=float, default=default, metavar="X", help=f"{text} (default {default:g})")
 
 
 def _value(values):
@@ -77,5 +89,13 @@ def run_turbine(args, out=None):
         altitude=_value(getattr(args, "altitude", 0.0)) or 0.0,
         fluid=None if fluid is None else fluid_from_text(fluid))
     designs = [result[i] for i in range(len(result))] if result.is_batch else [result]
-    print("\n\n".join(design.summary() for design in designs), file=out)
+    texts = []
+    for design in designs:
+        texts.append(design.summary())
+        if args.rated_power is not None:
+            curve = design.power_curve(args.rated_power, max_tip_speed=args.max_tip_speed,
+                                       weibull_scale=args.weibull_scale, weibull_shape=args.weibull_shape,
+                                       cut_in_speed=args.cut_in_speed, cut_out_speed=args.cut_out_speed)
+            texts.append(curve.summary())
+    print("\n\n".join(texts), file=out)
     return 0

@@ -35,14 +35,15 @@ class TurbineDesign:
     ``thrust`` N, ``power_coefficient``, ``thrust_coefficient``, ``tip_speed_ratio`` ...) and
     :data:`TURBINE_DISTRIBUTIONS` (``radii``, ``chord``, ``twist`` ...), plus ``radial_fractions``.
     ``num_blades``, ``airfoil``, ``loss_model`` and ``member`` (``'maximum power'``, ``'thrust'`` or
-    ``'ref_chord'``) describe the design.
+    ``'ref_chord'``) describe the design; ``altitude`` or ``fluid`` its air.
     """
 
-    def __init__(self, values, num_blades, airfoil, loss_model, member, polar, is_batch):
+    def __init__(self, values, num_blades, airfoil, loss_model, member, polar, is_batch, fluid=None):
         self.values = values
         self.num_blades, self.airfoil, self.loss_model, self.member = num_blades, airfoil, loss_model, member
         self.polar = polar
         self.is_batch = is_batch
+        self.fluid = fluid
 
     def __getattr__(self, name):
         values = self.__dict__.get("values", {})
@@ -57,7 +58,22 @@ class TurbineDesign:
     def __getitem__(self, index):
         values = {name: value[index:index + 1] for name, value in self.values.items()}
         return TurbineDesign(values, self.num_blades, self.airfoil, self.loss_model, self.member, self.polar,
-                             is_batch=False)
+                             is_batch=False, fluid=self.fluid)
+
+    def power_curve(self, rated_power, max_tip_speed=None, **options):
+        """The power curve and AEP of the designed blade(s) at their design tip-speed ratio
+        (:func:`~bild_mdo.results.power_curve.power_curve`: ``rated_power`` in W, ``max_tip_speed`` in m/s or
+        None, and its keyword options ``weibull_scale``, ``weibull_shape``, ``cut_in_speed``, ``cut_out_speed``,
+        ``num_wind_speeds``); the blade's airfoil, loss model and air are the design's."""
+        from bild_mdo.results.power_curve import power_curve
+
+        one = (lambda value: value) if self.is_batch else (lambda value: value[0])
+        values = {name: one(value) for name, value in self.values.items()}
+        air = {"fluid": self.fluid} if self.fluid is not None else {"altitude": values["altitude"]}
+        return power_curve(values["chord"], values["twist"], values["radius"],
+                           values["radius"] * values["hub_radius_ratio"], values["tip_speed_ratio"], rated_power,
+                           num_blades=self.num_blades, airfoil=self.polar, loss_model=self.loss_model,
+                           max_tip_speed=max_tip_speed, **air, **options)
 
     def summary(self):
         """A text summary of the design (the first one of a batch, with the batch size)."""
@@ -177,8 +193,9 @@ def design_turbine(wind_speed=10.0, tip_speed_ratio=None, rpm=None, radius=40.0,
                            None if fluid is None else fluid_arrays(fluid, nn))
     out["radial_fractions"] = out["radii"] / values["radius"][:, None]
     result = {"wind_speed": values["wind_speed"], **{name: values[name] for name in
-                                                     ("rpm", "radius", "hub_radius_ratio", "ref_radius_ratio")},
+                                                     ("rpm", "radius", "hub_radius_ratio", "ref_radius_ratio",
+                                                      "altitude")},
               **out}
     member = {"multiplier": "maximum power", "thrust": "thrust", "ref_chord": "ref_chord"}[design_for]
     return TurbineDesign(result, num_blades, getattr(polar, "name", type(polar).__name__), loss_model, member,
-                         polar, is_batch)
+                         polar, is_batch, fluid=fluid)

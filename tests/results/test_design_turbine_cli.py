@@ -27,3 +27,22 @@ def test_an_explicit_radius_is_kept_even_at_the_propeller_default():
     out = io.StringIO()
     assert run_turbine(args, out) == 0
     assert "radius                                1.5 m" in out.getvalue()
+
+
+def test_rated_power_prints_each_designs_power_curve():
+    args = _parser().parse_args(["--turbine", "--wind-speed", "9", "--tip-speed-ratio", "6", "8", "--airfoil",
+                                 "analytic", "--num-radial", "8", "--rated-power", "1.5e6", "--max-tip-speed", "60"])
+    out = io.StringIO()
+    assert run_turbine(args, out) == 0
+    text = out.getvalue()
+    assert text.count("Power curve (turbine BEM") == 2 and text.count("annual energy") == 2
+    # The limit is reached at 60 / 8 = 7.5 m/s (hand); at lambda = 6 only at 10 m/s, above rated (9.97 m/s).
+    assert "60 m/s, reached at 7.5 m/s (region 2.5)" in text and "60 m/s, not reached below rated" in text
+
+
+def test_power_curve_options_without_turbine_exit_2_with_one_line(capsys):
+    from tests.cli.runner import run
+
+    code, out, err = run(capsys, "design", "--rated-power", "1e6")
+    assert code == 2 and "--rated-power belongs to a turbine's power curve" in err
+    assert len(err.strip().splitlines()) == 1
