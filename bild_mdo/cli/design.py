@@ -174,7 +174,7 @@ def run_design(args, out):
     """
     if args.turbine:
         return run_turbine(args, out)
-    for option in ("rated_power", "max_tip_speed"):
+    for option in ("rated_power", "max_tip_speed", "power_curve_csv", "power_curve_plot"):
         if getattr(args, option, None) is not None:
             raise ValueError(f"--{option.replace('_', '-')} belongs to a turbine's power curve: give it with --turbine")
     speed = ({"advance_ratio": _scalar_or_list(args.advance_ratio)} if args.advance_ratio is not None

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import sys
 
-from bild_mdo.cli.files import airfoil_polar
+from bild_mdo.cli.files import airfoil_polar, figure_file, output_file
 from bild_mdo.fluid import fluid_from_text
 from bild_mdo.results.turbine_design import design_turbine
 
@@ -42,6 +42,10 @@ def add_turbine_arguments(parser):
                                   ("--cut-in-speed", 3.0, "cut-in wind speed [m/s]"),
                                   ("--cut-out-speed", 25.0, "cut-out wind speed [m/s]")):
         curve.add_argument(option, type=float, default=default, metavar="X", help=f"{text} (default {default:g})")
+    curve.add_argument("--power-curve-csv", metavar="FILE.csv", default=None,
+                       help="write the power curves as CSV (every design's rows; with --rated-power)")
+    curve.add_argument("--power-curve-plot", metavar="FILE.png", default=None,
+                       help="plot the first design's power curve (with --rated-power)")
 
 
 def _value(values):
@@ -60,7 +64,8 @@ def _shared(args, name):
 
 
 def run_turbine(args, out=None):
-    """Design the turbine(s) of parsed ``design --turbine`` options and print their summaries.
+    """Design the turbine(s) of parsed ``design --turbine`` options and print their summaries (each followed by
+    its power curve and AEP with ``--rated-power``, written to ``--power-curve-csv`` / ``--power-curve-plot``).
 
     Parameters
     ----------
@@ -77,6 +82,12 @@ def run_turbine(args, out=None):
     """
     out = sys.stdout if out is None else out
     fluid = getattr(args, "fluid", None)
+    rated_power = getattr(args, "rated_power", None)
+    csv_file, plot_file = getattr(args, "power_curve_csv", None), getattr(args, "power_curve_plot", None)
+    if rated_power is None and (csv_file or plot_file):
+        raise ValueError("--power-curve-csv and --power-curve-plot need --rated-power P [W]")
+    csv_file = output_file("--power-curve-csv", csv_file)
+    plot_file = figure_file("--power-curve-plot", plot_file)
     result = design_turbine(
         wind_speed=_value(args.wind_speed), tip_speed_ratio=_value(args.tip_speed_ratio),
         rpm=_value(args.turbine_rpm), radius=_shared(args, "radius"),
@@ -89,13 +100,20 @@ def run_turbine(args, out=None):
         altitude=_value(getattr(args, "altitude", 0.0)) or 0.0,
         fluid=None if fluid is None else fluid_from_text(fluid))
     designs = [result[i] for i in range(len(result))] if result.is_batch else [result]
-    texts = []
-    for design in designs:
-        texts.append(design.summary())
-        if args.rated_power is not None:
-            curve = design.power_curve(args.rated_power, max_tip_speed=args.max_tip_speed,
-                                       weibull_scale=args.weibull_scale, weibull_shape=args.weibull_shape,
-                                       cut_in_speed=args.cut_in_speed, cut_out_speed=args.cut_out_speed)
-            texts.append(curve.summary())
+    texts = [design.summary() for design in designs]
+    if rated_power is not None:
+        curves = result.power_curve(rated_power, max_tip_speed=args.max_tip_speed,
+                                    weibull_scale=args.weibull_scale, weibull_shape=args.weibull_shape,
+                                    cut_in_speed=args.cut_in_speed, cut_out_speed=args.cut_out_speed)
+        one = [curves[i] for i in range(len(curves))] if curves.is_batch else [curves]
+        texts = [text for pair in zip(texts, (curve.summary() for curve in one)) for text in pair]
     print("\n\n".join(texts), file=out)
+    if csv_file:
+        curves.to_csv(csv_file)
+        print(f"wrote {csv_file}", file=out)
+    if plot_file:
+        from bild_mdo.plots import plot_power_curve
+
+        plot_power_curve(curves, plot_file)
+        print(f"wrote {plot_file}", file=out)
     return 0

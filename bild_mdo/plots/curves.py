@@ -1,10 +1,11 @@
-"""Off-design performance curves (matplotlib, extra ``bild-mdo[plot]``).
+"""Off-design performance curves and turbine power curves (matplotlib, extra ``bild-mdo[plot]``).
 
 :func:`plot_performance_curves` draws thrust, power, efficiency (or figure of
 merit) and the coefficients of an
 :class:`~bild_mdo.results.off_design.OffDesignResult` against J or rpm, as in
-the paper's Fig. 9.  With a ``path`` the figure is written as PNG (see
-:mod:`bild_mdo.plots.figure`).
+the paper's Fig. 9; :func:`plot_power_curve` the power curve of a turbine
+(:class:`~bild_mdo.results.power_curve.PowerCurve`).  With a ``path`` the figure is
+written as PNG (see :mod:`bild_mdo.plots.figure`).
 """
 from __future__ import annotations
 
@@ -112,3 +113,51 @@ def _design_index(res):
     else:
         return None
     return int(hits[0]) if hits.size else None
+
+
+def plot_power_curve(curve, path=None):
+    """Power, thrust, rotor speed and pitch, and C_P, C_T of a turbine's power curve (the first rotor of a batch).
+
+    The rated wind speed is marked in every panel (dashed) and, with a tip-speed limit reached below rated, the
+    start of region 2.5 (dotted).
+
+    Parameters
+    ----------
+    curve : PowerCurve
+        From :func:`~bild_mdo.results.power_curve.power_curve` or ``TurbineDesign.power_curve``.
+    path : str or path, optional
+        PNG file to write.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    one = curve[0] if curve.is_batch else curve
+    v = one.wind_speed
+    fig = new_figure(path, figsize=(9.0, 6.6))
+    (ax_p, ax_t), (ax_s, ax_c) = fig.subplots(2, 2, sharex=True)
+    ax_p.plot(v, one.power / 1e3, color="tab:red", marker="o", ms=3)
+    ax_p.set_ylabel("power P [kW]")
+    ax_p.set_title(f"Power (AEP {one.annual_energy / 3.6e12:.4g} GWh, capacity factor {one.capacity_factor:.3f})")
+    ax_t.plot(v, one.thrust / 1e3, color="tab:blue", marker="o", ms=3)
+    ax_t.set_ylabel("thrust T [kN]")
+    ax_t.set_title("Thrust")
+    ax_s.plot(v, one.rpm, color="tab:green", marker="o", ms=3, label="rotor speed")
+    ax_s.set_ylabel("rotor speed [rpm]")
+    ax_s.set_title("Rotor speed and collective pitch")
+    ax_pitch = ax_s.twinx()
+    ax_pitch.plot(v, np.degrees(one.collective_pitch), color="tab:purple", marker="s", ms=3, label="pitch")
+    ax_pitch.set_ylabel("collective pitch [deg]")
+    ax_c.plot(v, one.power_coefficient, color="tab:red", marker="o", ms=3, label="C_P")
+    ax_c.plot(v, one.thrust_coefficient, color="tab:blue", marker="o", ms=3, label="C_T")
+    ax_c.set_ylabel("coefficient [-]")
+    ax_c.set_title("Power and thrust coefficients")
+    ax_c.legend()
+    for ax in (ax_p, ax_t, ax_s, ax_c):
+        ax.axvline(one.rated_wind_speed, color="0.4", ls="--", lw=0.8)
+        if one.tip_speed_limit_wind_speed < one.rated_wind_speed:
+            ax.axvline(one.tip_speed_limit_wind_speed, color="0.4", ls=":", lw=0.8)
+        ax.grid(True, alpha=0.3)
+    for ax in (ax_s, ax_c):
+        ax.set_xlabel("wind speed V [m/s]")
+    return finish(fig, path)

@@ -14,6 +14,8 @@ and ``twist`` (and 1-D arrays of the scalars, broadcast against them) give a bat
 """
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import openmdao.api as om
 
@@ -24,6 +26,7 @@ from bild_mdo.energy.power_curve_group import PowerCurveGroup
 from bild_mdo.energy.wind_speeds import MIN_WIND_SPEEDS
 from bild_mdo.fluid import fluid_point, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
+from bild_mdo.io.geometry import unit_key
 
 __all__ = ["PowerCurve", "power_curve"]
 
@@ -61,6 +64,34 @@ class PowerCurve:
 
     def __getitem__(self, index):
         return PowerCurve({name: value[index:index + 1] for name, value in self.values.items()}, is_batch=False)
+
+    def to_csv(self, path):
+        """Write the curve(s) as CSV with units in the header, one row per wind speed (and rotor), the pitch in
+        degrees; each rotor's rated wind speed, AEP and capacity factor on every row of it, the inputs in the first
+        line.
+
+        Returns
+        -------
+        pathlib.Path
+        """
+        columns = {"wind_speed": "m/s", "rpm": "rpm", "collective_pitch": "deg", "power": "W", "thrust": "N",
+                   "torque": "N*m", "power_coefficient": None, "thrust_coefficient": None,
+                   "rated_wind_speed": "m/s", "annual_energy": "GW*h", "capacity_factor": None}
+        lines = ["# bild-mdo power curve (turbine BEM, pitch trimmed to rated power above rated)",
+                 ",".join(["rotor [-]"] + [unit_key(name, units) for name, units in columns.items()])]
+        for i in range(len(self)):
+            one = self[i]
+            lines.append(f"# rotor {i}: rated_power [W] {one.rated_power:.10g}, tip_speed_ratio [-] "
+                         f"{one.tip_speed_ratio:.10g}, max_tip_speed [m/s] {one.max_tip_speed:.10g}, weibull_scale "
+                         f"[m/s] {one.weibull_scale:.10g}, weibull_shape [-] {one.weibull_shape:.10g}")
+            curve = [one.wind_speed, one.rpm, np.degrees(one.collective_pitch), one.power, one.thrust, one.torque,
+                     one.power_coefficient, one.thrust_coefficient]
+            tail = f"{one.rated_wind_speed:.10g},{one.annual_energy / 3.6e12:.10g},{one.capacity_factor:.10g}"
+            for row in zip(*curve):
+                lines.append(f"{i}," + ",".join(f"{x:.10g}" for x in row) + "," + tail)
+        path = Path(path)
+        path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+        return path
 
     def summary(self):
         """A text summary: the curve of the first rotor of a batch, its AEP and capacity factor."""

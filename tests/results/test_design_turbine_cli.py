@@ -2,6 +2,8 @@
 import argparse
 import io
 
+import numpy as np
+
 from bild_mdo.cli.design import add_design_arguments
 from bild_mdo.cli.design_turbine import run_turbine
 
@@ -46,3 +48,18 @@ def test_power_curve_options_without_turbine_exit_2_with_one_line(capsys):
     code, out, err = run(capsys, "design", "--rated-power", "1e6")
     assert code == 2 and "--rated-power belongs to a turbine's power curve" in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_power_curve_files_from_the_command_line(tmp_path, capsys):
+    from tests.cli.runner import run
+
+    csv, png = tmp_path / "curve.csv", tmp_path / "curve.png"
+    code, out, err = run(capsys, "design", "--turbine", "--airfoil", "analytic", "--num-radial", "8",
+                         "--tip-speed-ratio", "6", "8", "--rated-power", "1.5e6", "--power-curve-csv", str(csv),
+                         "--power-curve-plot", str(png))
+    assert code == 0 and f"wrote {csv}" in out and png.stat().st_size > 10_000
+    table = np.genfromtxt(csv, delimiter=",", comments="#", skip_header=2)
+    assert set(table[:, 0]) == {0.0, 1.0} and table.shape[0] == 2 * 13
+    code, out, err = run(capsys, "design", "--turbine", "--airfoil", "analytic", "--num-radial", "8",
+                         "--power-curve-csv", str(csv))
+    assert code == 2 and "need --rated-power" in err and len(err.strip().splitlines()) == 1

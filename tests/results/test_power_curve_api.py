@@ -13,6 +13,9 @@ from tests.energy.test_power_curve_group import POLAR, RADIUS, TSR, _values
 from tests.energy.test_tip_speed_limit import LIMIT, _curve
 
 RATED = 1.5e6
+#: The test rotors' tip station is in the turbulent-wake state at the lowest wind speeds (the API warns; the group
+#: in tests/energy ignores it, on_invalid='ignore').
+TEST_ROTORS_WARN = pytest.mark.filterwarnings("ignore::bild_mdo.BEMStateWarning")
 
 
 @pytest.fixture(scope="module")
@@ -51,11 +54,10 @@ def test_design_curve_with_a_tip_speed_limit(rotor):
     assert curve.annual_energy < free.annual_energy
 
 
-@pytest.mark.filterwarnings("ignore::bild_mdo.BEMStateWarning")
+@TEST_ROTORS_WARN
 def test_power_curve_of_a_blade_is_the_groups():
     # The test rotors of tests/energy (two blades in one batch), through the API (ISA by isa()) and through
-    # PowerCurveGroup with its AtmosphereComp.  Their tip station is in the turbulent-wake state at the lowest
-    # wind speeds (the API warns; the group in tests/energy ignores it, on_invalid='ignore').
+    # PowerCurveGroup with its AtmosphereComp.
     values = _values()
     curve = power_curve(values["chord"], values["twist"], RADIUS, values["hub_radius"], TSR, values["rated_power"],
                         airfoil=POLAR, max_tip_speed=LIMIT, weibull_scale=values["weibull_scale"],
@@ -89,3 +91,42 @@ def test_power_curve_rejects_bad_inputs_in_one_line(change, message):
     with pytest.raises(ValueError, match=message) as info:
         power_curve(**args)
     assert "\n" not in str(info.value)
+
+
+@TEST_ROTORS_WARN
+def test_to_csv_round_trips_the_curves(tmp_path):
+    values = _values()
+    curve = power_curve(values["chord"], values["twist"], RADIUS, values["hub_radius"], TSR, values["rated_power"],
+                        airfoil=POLAR, num_wind_speeds=7)
+    path = curve.to_csv(tmp_path / "curve.csv")
+    with open(path, encoding="utf-8") as handle:
+        header = [line for line in handle if not line.startswith("#")][0].strip().split(",")
+    assert header[:3] == ["rotor [-]", "wind_speed [m/s]", "rpm [rpm]"]
+    table = np.genfromtxt(path, delimiter=",", comments="#", skip_header=2)
+    table = np.rec.fromarrays(table.T, names=[name.split(" [")[0] for name in header])
+    assert table.size == 2 * 7
+    for i in range(2):
+        rows = table[table["rotor"] == i]
+        np.testing.assert_allclose(rows["wind_speed"], curve.wind_speed[i], rtol=1e-9)
+        np.testing.assert_allclose(rows["power"], curve.power[i], rtol=1e-9)
+        np.testing.assert_allclose(rows["collective_pitch"], np.degrees(curve.collective_pitch[i]), rtol=1e-9,
+                                   atol=1e-12)
+        np.testing.assert_allclose(rows["annual_energy"], curve.annual_energy[i] / 3.6e12, rtol=1e-9)
+
+
+@TEST_ROTORS_WARN
+def test_plot_power_curve_draws_the_curve(tmp_path):
+    pytest.importorskip("matplotlib")
+    from bild_mdo.plots import plot_power_curve
+
+    values = _values()
+    curve = power_curve(values["chord"][0], values["twist"][0], RADIUS[0], values["hub_radius"][0], TSR[0],
+                        values["rated_power"][0], airfoil=POLAR, max_tip_speed=LIMIT[0], num_wind_speeds=7)
+    path = tmp_path / "curve.png"
+    fig = plot_power_curve(curve, path)
+    assert path.stat().st_size > 10_000
+    power_axes = fig.axes[0]
+    np.testing.assert_allclose(power_axes.lines[0].get_ydata(), curve.power / 1e3, rtol=1e-15)
+    # Rated (dashed) and the start of region 2.5 (dotted) are marked.
+    marks = sorted(line.get_xdata()[0] for line in power_axes.lines[1:])
+    np.testing.assert_allclose(marks, sorted([curve.rated_wind_speed, curve.tip_speed_limit_wind_speed]), rtol=1e-15)
