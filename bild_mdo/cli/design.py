@@ -10,7 +10,7 @@ from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.annulus_stationarity import IDEAL_LOADINGS
 from bild_mdo.bild.chord import CHORD_FORMS
 from bild_mdo.bild.variants import SECTION_POINTS
-from bild_mdo.cli.design_turbine import TURBINE_DEFAULTS, add_turbine_arguments, run_turbine
+from bild_mdo.cli.design_turbine import CURVE_OPTIONS, TURBINE_DEFAULTS, add_turbine_arguments, run_turbine
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, batch_files, figure_file, output_file
 from bild_mdo.io.blade_3d import DEFAULT_STACKING, LIBRARIES, require, section_coordinates, write_step, write_stl
 from bild_mdo.io.geometry import LENGTH_UNITS
@@ -174,7 +174,7 @@ def run_design(args, out):
     """
     if args.turbine:
         return run_turbine(args, out)
-    for option in ("rated_power", "max_tip_speed", "power_curve_csv", "power_curve_plot"):
+    for option in ("rated_power", *CURVE_OPTIONS):
         if getattr(args, option, None) is not None:
             raise ValueError(f"--{option.replace('_', '-')} belongs to a turbine's power curve: give it with --turbine")
     speed = ({"advance_ratio": _scalar_or_list(args.advance_ratio)} if args.advance_ratio is not None

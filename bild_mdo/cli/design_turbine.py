@@ -18,6 +18,10 @@ from bild_mdo.results.turbine_design import design_turbine
 
 #: Defaults of the shared options where the design subcommand's defaults (a propeller's) would not fit.
 TURBINE_DEFAULTS = {"radius": 40.0, "hub_radius_ratio": 0.05, "ref_radius_ratio": 0.7}
+#: Defaults of the power-curve options (those of :func:`~bild_mdo.results.power_curve.power_curve`).
+CURVE_DEFAULTS = {"weibull_scale": 8.0, "weibull_shape": 2.0, "cut_in_speed": 3.0, "cut_out_speed": 25.0}
+#: The options that need --rated-power (argparse's names).
+CURVE_OPTIONS = ("max_tip_speed", *CURVE_DEFAULTS, "power_curve_csv", "power_curve_plot")
 
 
 def add_turbine_arguments(parser):
@@ -37,11 +41,13 @@ def add_turbine_arguments(parser):
                        help="rated power [W]: print each design's power curve (pitch trimmed above rated) and AEP")
     curve.add_argument("--max-tip-speed", type=float, default=None, metavar="V",
                        help="largest tip speed [m/s] (region 2.5; default: no limit)")
-    for option, default, text in (("--weibull-scale", 8.0, "Weibull scale c of the wind [m/s]"),
-                                  ("--weibull-shape", 2.0, "Weibull shape k [-] (2: Rayleigh)"),
-                                  ("--cut-in-speed", 3.0, "cut-in wind speed [m/s]"),
-                                  ("--cut-out-speed", 25.0, "cut-out wind speed [m/s]")):
-        curve.add_argument(option, type=float, default=default, metavar="X", help=f"{text} (default {default:g})")
+    for option, text in (("--weibull-scale", "Weibull scale c of the wind [m/s]"),
+                         ("--weibull-shape", "Weibull shape k [-] (2: Rayleigh)"),
+                         ("--cut-in-speed", "cut-in wind speed [m/s]"),
+                         ("--cut-out-speed", "cut-out wind speed [m/s]")):
+        default = CURVE_DEFAULTS[option[2:].replace("-", "_")]
+        # None when not given, so that an option without --rated-power is refused, not ignored.
+        curve.add_argument(option, type=float, default=None, metavar="X", help=f"{text} (default {default:g})")
     curve.add_argument("--power-curve-csv", metavar="FILE.csv", default=None,
                        help="write the power curves as CSV (every design's rows; with --rated-power)")
     curve.add_argument("--power-curve-plot", metavar="FILE.png", default=None,
@@ -84,8 +90,11 @@ def run_turbine(args, out=None):
     fluid = getattr(args, "fluid", None)
     rated_power = getattr(args, "rated_power", None)
     csv_file, plot_file = getattr(args, "power_curve_csv", None), getattr(args, "power_curve_plot", None)
-    if rated_power is None and (csv_file or plot_file):
-        raise ValueError("--power-curve-csv and --power-curve-plot need --rated-power P [W]")
+    given = [name for name in CURVE_OPTIONS if getattr(args, name, None) is not None]
+    if rated_power is None and given:
+        raise ValueError(f"--{given[0].replace('_', '-')} belongs to the power curve: give it with --rated-power P [W]")
+    curve_options = {name: CURVE_DEFAULTS[name] if getattr(args, name, None) is None else getattr(args, name)
+                     for name in CURVE_DEFAULTS}
     csv_file = output_file("--power-curve-csv", csv_file)
     plot_file = figure_file("--power-curve-plot", plot_file)
     result = design_turbine(
@@ -102,9 +111,7 @@ def run_turbine(args, out=None):
     designs = [result[i] for i in range(len(result))] if result.is_batch else [result]
     texts = [design.summary() for design in designs]
     if rated_power is not None:
-        curves = result.power_curve(rated_power, max_tip_speed=args.max_tip_speed,
-                                    weibull_scale=args.weibull_scale, weibull_shape=args.weibull_shape,
-                                    cut_in_speed=args.cut_in_speed, cut_out_speed=args.cut_out_speed)
+        curves = result.power_curve(rated_power, max_tip_speed=args.max_tip_speed, **curve_options)
         one = [curves[i] for i in range(len(curves))] if curves.is_batch else [curves]
         texts = [text for pair in zip(texts, (curve.summary() for curve in one)) for text in pair]
     print("\n\n".join(texts), file=out)

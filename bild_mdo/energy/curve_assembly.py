@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.energy.wind_speeds import declare_wind_speed_option, region_sizes
+from bild_mdo.energy.wind_speeds import declare_tip_speed_limit_option, declare_wind_speed_option, region_sizes
 
 #: Curves assembled from both regions: name -> (units, description).
 CURVE_OUTPUTS = {"power": ("W", "power extracted at each wind speed of the curve"),
@@ -27,6 +27,8 @@ class CurveAssemblyComp(om.ExplicitComponent):
         Rotors.
     num_wind_speeds : int
         Points of the curve ``nw = n2 + n3 - 1`` (:func:`~bild_mdo.energy.wind_speeds.region_sizes`).
+    tip_speed_limit : bool
+        The layout of a curve with a tip-speed limit (region 2 with more points, region 3 with fewer).
 
     Inputs
     ------
@@ -42,10 +44,11 @@ class CurveAssemblyComp(om.ExplicitComponent):
     def initialize(self):
         self.options.declare("num_nodes", types=int, default=1, lower=1, desc="rotors (axis 0)")
         declare_wind_speed_option(self.options)
+        declare_tip_speed_limit_option(self.options)
 
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
-        n2, n3 = region_sizes(nw)
+        n2, n3 = region_sizes(nw, self.options["tip_speed_limit"])
         index = np.arange(nn * nw).reshape(nn, nw)
         self._slots = {"region2": index[:, :n2].ravel(), "region3": index[:, n2:].ravel()}
         sizes = {"region2": nn * n2, "region3": nn * (n3 - 1)}

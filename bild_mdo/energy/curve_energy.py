@@ -74,7 +74,9 @@ class CurveEnergyComp(om.ExplicitComponent):
     ------
     openmdao.api.AnalysisError
         Where the power at the rated point or in region 3 differs from ``rated_power`` by more than
-        :data:`TRIM_RTOL` (relative): a failed rated-speed or pitch solve, never integrated silently.
+        :data:`TRIM_RTOL` (relative), or exceeds it or falls as the wind rises below rated: a failed rated-speed
+        or pitch solve, or a rotor stalled at its tip-speed limit that may reach rated power more than once,
+        never integrated silently.
     """
 
     def initialize(self):
@@ -86,7 +88,7 @@ class CurveEnergyComp(om.ExplicitComponent):
 
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
-        n2, n3 = region_sizes(nw)
+        n2, n3 = region_sizes(nw, self.options["tip_speed_limit"])
         self.add_input("wind_speed", val=np.linspace(3.0, 25.0, nw)[None, :].repeat(nn, axis=0), units="m/s",
                        desc="wind speeds of the power curve")
         self.add_input("power", val=np.full((nn, nw), 1.0e6), units="W", desc="power at each wind speed")
@@ -98,7 +100,7 @@ class CurveEnergyComp(om.ExplicitComponent):
         self.add_output("capacity_factor", val=np.ones(nn), units=None, desc="AEP / (8760 h rated power)")
         # The intervals of region 2 (lower and upper limit, the quadrature weight of each point of the curve).
         if limited:
-            n2a, n2b = region2_split(n2)
+            n2a, n2b, _ = region2_split(nw)
             self._intervals = [("cut_in_speed", _KNEE, np.concatenate((lobatto(n2a)[1], np.zeros(nw - n2a)))),
                                (_KNEE, "rated_wind_speed", np.concatenate((np.zeros(n2a - 1), lobatto(n2b)[1],
                                                                            np.zeros(n3 - 1))))]
@@ -138,8 +140,23 @@ class CurveEnergyComp(om.ExplicitComponent):
                                        f"{np.real(inputs[name][i]):.6g} (rotor {i})")
 
     def _check_trim(self, inputs):
-        n2, _ = region_sizes(self.options["num_wind_speeds"])
+        n2, _ = region_sizes(self.options["num_wind_speeds"], self.options["tip_speed_limit"])
         p_r = np.real(inputs["rated_power"])[:, None]
+        below = np.real(inputs["power"])[:, :n2]
+        # Below rated the power rises with the wind speed (P ~ C_P V**3 at the design tip-speed ratio); at a
+        # tip-speed limit it can stall, fall and rise again, so that rated power is reached at several wind
+        # speeds and the rated-speed solve may have found a later one: refused, never integrated silently.
+        over = np.concatenate((below[:, :-1] > p_r * (1.0 + TRIM_RTOL),
+                               np.diff(below, axis=1) < -TRIM_RTOL * p_r), axis=1)
+        if np.any(over):
+            i, j = (int(x[0]) for x in np.nonzero(over))
+            j = j if j < n2 - 1 else j - (n2 - 1) + 1
+            raise om.AnalysisError(
+                f"{self.msginfo}: below the rated wind speed {np.real(inputs['rated_wind_speed'][i]):.6g} m/s the power "
+                f"exceeds rated power or falls as the wind rises, at {np.real(inputs['wind_speed'][i, j]):.6g} m/s "
+                f"(rotor {i}: {below[i, j]:.6g} W, rated {p_r[i, 0]:.6g} W); at zero pitch the rotor stalls at its "
+                "tip-speed limit and may reach rated power at more than one wind speed: raise max_tip_speed or lower "
+                "the rated power")
         power = np.real(inputs["power"])[:, n2 - 1:]
         bad = ~(np.abs(power - p_r) <= TRIM_RTOL * p_r)
         if np.any(bad):

@@ -5,7 +5,7 @@ OpenMDAO components.  For each of ``num_nodes`` rotors (a blade ``chord[nn, nr]`
 
     [atmosphere]  AtmosphereComp            altitude -> rho, mu, speed_of_sound  (use_atmosphere)
     rated         RatedSpeedGroup           V_r: BEM power at lambda, pitch 0 = P_r     (Newton, implicit)
-    wind          WindSpeedsComp            Gauss-Lobatto nodes on [V_in, V_r] and [V_r, V_out]
+    wind          WindSpeedsComp            Gauss-Lobatto nodes on [V_in, V_r] ([V_in, V_k], [V_k, V_r]), [V_r, V_out]
     speed         RotorSpeedComp            Omega = lambda min(V, V_r) / R  (at most V_tip,max / R)
     region2_blade RotorBroadcastComp        the blade and the fluid at every wind speed (and region3_blade)
     region2       InclinedBEMGroup          turbine BEM at the region-2 nodes, pitch 0
@@ -69,7 +69,8 @@ rated_wind_speed[nn] (m/s)
     zero pitch reaches rated power.
 wind_speed[nn, nw] (m/s), rpm[nn, nw] (rpm), collective_pitch[nn, nw] (rad), power[nn, nw] (W), thrust[nn, nw] (N)
     The power curve, also ``torque[nn, nw] (N*m)``, ``power_coefficient[nn, nw]``, ``thrust_coefficient[nn, nw]``;
-    index ``n2 - 1`` (:func:`~bild_mdo.energy.wind_speeds.region_sizes`) is the rated point.
+    index ``n2 - 1`` (:func:`~bild_mdo.energy.wind_speeds.region_sizes`, with ``tip_speed_limit``) is the rated
+    point.
 tip_speed_limit_wind_speed[nn] (m/s)
     Where region 2.5 begins, ``min(max_tip_speed / lambda, V_r)`` (``tip_speed_limit``; the rated wind speed
     where the limit is not reached below rated); index ``n2a - 1``
@@ -138,8 +139,8 @@ class PowerCurveGroup(om.Group):
     def setup(self):
         opts = self.options
         nn, nr, nw = opts["num_nodes"], opts["num_radial"], opts["num_wind_speeds"]
-        n2, n3 = region_sizes(nw)
         limited = opts["tip_speed_limit"]
+        n2, n3 = region_sizes(nw, limited)
         tip = ["max_tip_speed"] if limited else []
         polar = resolve_polar("naca4412") if opts["polar"] is None else opts["polar"]
         bem = dict(num_radial=nr, num_blades=opts["num_blades"], polar=polar, loss_model=opts["loss_model"],
@@ -165,7 +166,7 @@ class PowerCurveGroup(om.Group):
                                                        use_atmosphere=False, **bem))
         self.add_subsystem("region3", PitchTrimGroup(num_nodes=nn * (n3 - 1), pitch_bounds=opts["pitch_bounds"],
                                                      **bem))
-        self.add_subsystem("curve", CurveAssemblyComp(num_nodes=nn, num_wind_speeds=nw),
+        self.add_subsystem("curve", CurveAssemblyComp(num_nodes=nn, num_wind_speeds=nw, tip_speed_limit=limited),
                            promotes_outputs=list(CURVE_OUTPUTS) + ["collective_pitch"])
         self.add_subsystem("energy", CurveEnergyComp(num_nodes=nn, num_wind_speeds=nw, tip_speed_limit=limited),
                            promotes_inputs=["wind_speed", "power", "rated_wind_speed", "rated_power", *_WIND, *knee],

@@ -31,8 +31,10 @@ class RatedSpeedGroup(om.Group):
     BEM outputs at rated (``thrust`` ... of :data:`~bild_mdo.bem.metrics.TURBINE_OUTPUTS`) are outputs too.
 
     With option ``tip_speed_limit`` the rotor turns at most at ``max_tip_speed / R``, so rated power may be
-    reached in region 2.5 (the power still grows with the wind speed there, more slowly than ``V**3``; the
-    residual stays monotonic).
+    reached in region 2.5.  There the power grows more slowly than ``V**3`` and can even fall as the wind
+    rises (the blade leaves its design angles of attack), so rated power may be reached at more than one wind
+    speed; the solve may find a later one, which the power curve's energy component refuses
+    (:class:`~bild_mdo.energy.curve_energy.CurveEnergyComp`: power above rated below the rated wind speed).
 
     Options
     -------

@@ -64,9 +64,9 @@ class RatedWindSpeedComp(om.ImplicitComponent):
         if np.any(bad):
             i = int(np.flatnonzero(bad)[0])
             raise om.AnalysisError(
-                f"{self.msginfo}: rotor {i} extracts no power at its design tip-speed ratio (BEM power "
-                f"{np.real(power[i]):.6g} W, rated power {np.real(p_rated[i]):.6g} W); "
-                "the rated wind speed is undefined")
+                f"{self.msginfo}: rotor {i} extracts no power at its design tip-speed ratio, or at its tip-speed "
+                f"limit where it has one (BEM power {np.real(power[i]):.6g} W, rated power "
+                f"{np.real(p_rated[i]):.6g} W); the rated wind speed is undefined")
         return (p_rated / power) ** (1.0 / 3.0)
 
     def apply_nonlinear(self, inputs, outputs, residuals):

@@ -13,9 +13,11 @@ input ``rated_wind_speed``): the rated-speed solve evaluates the rotor there.  W
     Omega(V) = min(lambda min(V, V_r), V_tip,max) / R
 
 The ``min`` has kinks at ``V = V_r`` and at ``lambda V = V_tip,max``; the partials are those of
-the branch the real parts select, the lower branch where two are equal (the wind-speed nodes of
-:mod:`bild_mdo.energy.wind_speeds` sit on a kink only at its end points: the rated point, and
-the start of region 2.5, both evaluated at the design tip-speed ratio by this convention).
+the branch the real parts select, the first one (``V`` below ``V_r``, ``lambda V`` below the limit)
+where two are equal.  The wind-speed nodes of :mod:`bild_mdo.energy.wind_speeds` sit on a kink only
+at the ends of their intervals (the rated point; the start of region 2.5, and where the limit is
+not reached below rated the points that repeat the rated point), where both branches give the
+same value and, at the start of region 2.5, the same total derivative.
 """
 from __future__ import annotations
 
@@ -23,6 +25,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.constants import RPM_TO_RAD_PER_S
+from bild_mdo.energy.wind_speeds import declare_tip_speed_limit_option
 
 
 class RotorSpeedComp(om.ExplicitComponent):
@@ -54,8 +57,7 @@ class RotorSpeedComp(om.ExplicitComponent):
         self.options.declare("num_points", types=int, default=None, allow_none=True, lower=1,
                              desc="wind speeds per rotor (axis 1); None: one, shape (nn,)")
         self.options.declare("capped", types=bool, default=True, desc="hold the rated rotor speed above rated")
-        self.options.declare("tip_speed_limit", types=bool, default=False,
-                             desc="hold the rotor speed where the tip speed reaches max_tip_speed (region 2.5)")
+        declare_tip_speed_limit_option(self.options)
 
     def setup(self):
         nn, npt = self.options["num_nodes"], self.options["num_points"]
@@ -66,7 +68,7 @@ class RotorSpeedComp(om.ExplicitComponent):
         if self.options["capped"]:
             self.add_input("rated_wind_speed", val=np.full(nn, 11.0), units="m/s", desc="rated wind speed V_r")
         if self.options["tip_speed_limit"]:
-            self.add_input("max_tip_speed", val=np.full(nn, 90.0), units="m/s", desc="largest tip speed Omega R")
+            self.add_input("max_tip_speed", val=np.full(nn, 80.0), units="m/s", desc="largest tip speed Omega R")
         self.add_output("rpm", val=np.full(shape, 10.0), units="rpm", desc="rotor speed")
 
     def setup_partials(self):

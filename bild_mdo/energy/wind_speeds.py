@@ -11,12 +11,15 @@ integral of each region is exact for polynomials of degree ``2n - 3`` (Abramowit
 
 With option ``tip_speed_limit`` region 2 is split where the tip speed ``lambda V`` reaches
 ``max_tip_speed`` (region 2.5 beyond it: the rotor speed held at its limit, the power still below
-rated), ``V_k = min(V_tip,max / lambda, V_r)``: the first ``n2a = (n2 + 1) // 2`` points are the
-Lobatto nodes of ``[V_in, V_k]``, the rest of region 2 those of ``[V_k, V_r]`` (``V_k`` shared), so
-neither interval's integrand has the kink of the rotor speed inside it.  Where the limit is not
-reached below rated, ``V_k = V_r`` and the second interval has length zero (its points repeat the
-rated point, with no weight).  ``V_k`` depends on ``max_tip_speed`` and ``lambda`` where the limit
-binds, on ``V_r`` where it does not (a kink where ``V_tip,max = lambda V_r``).
+rated), ``V_k = min(V_tip,max / lambda, V_r)``: the first ``n2a`` points are the Lobatto nodes of
+``[V_in, V_k]``, the next ``n2b - 1`` those of ``[V_k, V_r]`` (``V_k`` shared), so neither
+interval's integrand has the kink of the rotor speed inside it (:func:`region2_split`).
+``n2a`` is the ``n2`` of the same number of points without the limit, so where the limit is not
+reached below rated (``V_k = V_r``; the second interval has length zero, its points repeat the
+rated point with no weight) region 2 is integrated on the same nodes as without the limit; region
+3, whose energy is rated power's exact integral plus a trim residue, gives up the points.  ``V_k``
+depends on ``max_tip_speed`` and ``lambda`` where the limit binds, on ``V_r`` where it does not (a
+kink where ``V_tip,max = lambda V_r``).
 """
 from __future__ import annotations
 
@@ -42,19 +45,26 @@ def lobatto(n):
     return x, weights
 
 
-def region_sizes(num_wind_speeds):
-    """``(n2, n3)``: Lobatto nodes of region 2 and of region 3 (the rated point counted in both)."""
+def region_sizes(num_wind_speeds, tip_speed_limit=False):
+    """``(n2, n3)``: points of region 2 and of region 3 (the rated point counted in both); with
+    ``tip_speed_limit`` region 2's two intervals together (:func:`region2_split`)."""
     if num_wind_speeds < MIN_WIND_SPEEDS:
         raise ValueError(f"num_wind_speeds must be at least {MIN_WIND_SPEEDS}, got {num_wind_speeds}")
+    if tip_speed_limit:
+        n2a, n2b, n3 = region2_split(num_wind_speeds)
+        return n2a + n2b - 1, n3
     n2 = (num_wind_speeds + 1) // 2
     return n2, num_wind_speeds + 1 - n2
 
 
-def region2_split(n2):
-    """``(n2a, n2b)``: Lobatto nodes of the two intervals of region 2 with a tip-speed limit (the point where
-    the limit is reached counted in both, ``n2a + n2b - 1 = n2``)."""
-    n2a = (n2 + 1) // 2
-    return n2a, n2 - n2a + 1
+def region2_split(num_wind_speeds):
+    """``(n2a, n2b, n3)``: Lobatto nodes of ``[V_in, V_k]``, of ``[V_k, V_r]`` and of region 3 with a tip-speed
+    limit (``n2a + n2b + n3 - 2 = num_wind_speeds``): ``n2a`` is region 2's ``n2`` without the limit, the rest
+    shared between the other two, at least 2 each."""
+    n2a = (num_wind_speeds + 1) // 2
+    rest = num_wind_speeds + 2 - n2a
+    n2b = (rest + 1) // 2
+    return n2a, n2b, rest - n2b
 
 
 def declare_wind_speed_option(options):
@@ -130,22 +140,22 @@ class WindSpeedsComp(om.ExplicitComponent):
 
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
-        n2, n3 = region_sizes(nw)
+        limited = self.options["tip_speed_limit"]
+        n2, n3 = region_sizes(nw, limited)
         for name, val in (("cut_in_speed", 3.0), ("rated_wind_speed", 11.0), ("cut_out_speed", 25.0)):
             self.add_input(name, val=np.full(nn, val), units="m/s")
         self.add_output("wind_speed", val=np.ones((nn, nw)), units="m/s", desc="wind speeds of the power curve")
         t3 = 0.5 * (lobatto(n3)[0][1:] + 1.0)
         rows, cols = np.arange(nn * nw), np.repeat(np.arange(nn), nw)
-        limited = self.options["tip_speed_limit"]
         if limited:
-            n2a, n2b = region2_split(n2)
+            n2a, n2b, _ = region2_split(nw)
             t2a, t2b = 0.5 * (lobatto(n2a)[0] + 1.0), 0.5 * (lobatto(n2b)[0][1:] + 1.0)
             # d V / d (cut-in, V_k, rated, cut-out) at each point.
             self._weights = {"cut_in_speed": np.concatenate((1.0 - t2a, np.zeros(n2b - 1 + n3 - 1))),
                              "knee": np.concatenate((t2a, 1.0 - t2b, np.zeros(n3 - 1))),
                              "rated_wind_speed": np.concatenate((np.zeros(n2a), t2b, 1.0 - t3)),
                              "cut_out_speed": np.concatenate((np.zeros(n2), t3))}
-            self.add_input("max_tip_speed", val=np.full(nn, 90.0), units="m/s", desc="largest tip speed Omega R")
+            self.add_input("max_tip_speed", val=np.full(nn, 80.0), units="m/s", desc="largest tip speed Omega R")
             self.add_input("tip_speed_ratio", val=np.full(nn, 7.0), units=None, desc="design tip-speed ratio")
             self.add_output("tip_speed_limit_wind_speed", val=np.full(nn, 11.0), units="m/s",
                             desc="wind speed where the tip speed reaches max_tip_speed (at most the rated one)")
@@ -154,8 +164,12 @@ class WindSpeedsComp(om.ExplicitComponent):
                                                                  "rated_wind_speed"], rows=node, cols=node)
             for name in ("cut_in_speed", "cut_out_speed"):
                 self.declare_partials("wind_speed", name, rows=rows, cols=cols, val=np.tile(self._weights[name], nn))
-            self.declare_partials("wind_speed", ["rated_wind_speed", "max_tip_speed", "tip_speed_ratio"], rows=rows,
-                                  cols=cols)
+            self.declare_partials("wind_speed", "rated_wind_speed", rows=rows, cols=cols)
+            # Only the points of region 2 move with V_k.
+            self._knee_points = np.flatnonzero(self._weights["knee"])
+            knee_rows = (np.arange(nn)[:, None] * nw + self._knee_points[None, :]).ravel()
+            self.declare_partials("wind_speed", ["max_tip_speed", "tip_speed_ratio"], rows=knee_rows,
+                                  cols=np.repeat(np.arange(nn), self._knee_points.size))
         else:
             t2 = 0.5 * (lobatto(n2)[0] + 1.0)
             # d V / d (cut-in, rated, cut-out) at each point, the same for every rotor.
@@ -197,5 +211,8 @@ class WindSpeedsComp(om.ExplicitComponent):
                   "rated_wind_speed": np.where(binds, 0.0, 1.0)}
         for name, value in d_knee.items():
             partials["tip_speed_limit_wind_speed", name] = value
-            direct = self._weights["rated_wind_speed"][None, :] if name == "rated_wind_speed" else 0.0
-            partials["wind_speed", name] = (direct + value[:, None] * self._weights["knee"][None, :]).ravel()
+            if name == "rated_wind_speed":
+                partials["wind_speed", name] = (self._weights["rated_wind_speed"][None, :]
+                                                + value[:, None] * self._weights["knee"][None, :]).ravel()
+            else:
+                partials["wind_speed", name] = (value[:, None] * self._weights["knee"][None, self._knee_points]).ravel()

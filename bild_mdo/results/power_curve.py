@@ -63,12 +63,13 @@ class PowerCurve:
         return len(self.values["annual_energy"])
 
     def __getitem__(self, index):
+        index = range(len(self))[index]  # a negative index counts from the end; IndexError outside
         return PowerCurve({name: value[index:index + 1] for name, value in self.values.items()}, is_batch=False)
 
     def to_csv(self, path):
         """Write the curve(s) as CSV with units in the header, one row per wind speed (and rotor), the pitch in
-        degrees; each rotor's rated wind speed, AEP and capacity factor on every row of it, the inputs in the first
-        line.
+        degrees; each rotor's rated wind speed, AEP and capacity factor on every row of it, its inputs in a comment
+        line before its rows.
 
         Returns
         -------
@@ -132,7 +133,13 @@ def _scalars(radius, hub_radius, tip_speed_ratio, rated_power, max_tip_speed, we
     validation.smaller("hub_radius", values["hub_radius"], "radius", values["radius"])
     validation.smaller("cut_in_speed", values["cut_in_speed"], "cut_out_speed", values["cut_out_speed"])
     if max_tip_speed is not None:
-        values["max_tip_speed"] = validation.positive("max_tip_speed", max_tip_speed, units="m/s")
+        values["max_tip_speed"] = validation.positive("max_tip_speed", max_tip_speed, units="m/s",
+                                                      hint="the largest Omega R")
+        reached = values["max_tip_speed"] / values["tip_speed_ratio"]
+        validation.check("max_tip_speed", values["max_tip_speed"] * np.ones_like(reached),
+                         ~(reached > values["cut_in_speed"]),
+                         "reached above cut_in_speed at the design tip-speed ratio (max_tip_speed / "
+                         "tip_speed_ratio > cut_in_speed)", units="m/s")
     return values
 
 
@@ -157,8 +164,8 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
         Anything :func:`~bild_mdo.io.airfoil.resolve_airfoil` accepts.
     loss_model : {'tip_hub', 'tip', 'none'}
     max_tip_speed : float or array_like, optional
-        Largest tip speed (m/s): the rotor speed is held at ``max_tip_speed / R`` from where it is reached
-        (region 2.5).  None (default): no limit.
+        Largest tip speed ``Omega R`` (m/s): the rotor speed is held at ``max_tip_speed / R`` from where it is
+        reached (region 2.5), which must lie above cut-in.  None (default): no limit.
     weibull_scale, weibull_shape : float or array_like
         Weibull ``c`` (m/s) and ``k`` (-) of the wind at hub height (``k = 2``: Rayleigh).
     cut_in_speed, cut_out_speed : float or array_like
@@ -221,7 +228,7 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
     prob.run_model()
     result = {name: np.array(prob.get_val(name, units=units)) for name, units in {**CURVE_VALUES,
                                                                                  **ROTOR_VALUES}.items()}
-    result[_KNEE] = np.array(prob.get_val(_KNEE, units="m/s")) if limited else np.full(nn, np.nan)
+    result[_KNEE] = np.array(prob.get_val(_KNEE if limited else "rated_wind_speed", units="m/s"))
     for name in ("rated_power", "tip_speed_ratio", "weibull_scale", "weibull_shape", "cut_in_speed",
                  "cut_out_speed"):
         result[name] = values[name]

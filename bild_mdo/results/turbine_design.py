@@ -16,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo import validation
+from bild_mdo.airfoil.load_path_table import data_reynolds_range
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.turbine_problem import TURBINE_DISTRIBUTIONS, TURBINE_VALUES, run_turbine_bild  # noqa: F401
@@ -33,7 +34,10 @@ class TurbineDesign:
     Attributes (arrays ``(nn,)`` / ``(nn, nr)`` for a batch, scalars / ``(nr,)`` for one design): the inputs
     ``wind_speed, rpm, radius, hub_radius_ratio, ref_radius_ratio``; :data:`TURBINE_VALUES` (``power`` W,
     ``thrust`` N, ``power_coefficient``, ``thrust_coefficient``, ``tip_speed_ratio`` ...) and
-    :data:`TURBINE_DISTRIBUTIONS` (``radii``, ``chord``, ``twist`` ...), plus ``radial_fractions``.
+    :data:`TURBINE_DISTRIBUTIONS` (``radii``, ``chord``, ``twist`` ...), plus ``radial_fractions`` and, as for a
+    propeller design, ``reynolds`` (each station's chord Reynolds number ``rho W c / mu``) and
+    ``reynolds_outside_data`` (1.0 where it lies outside the polar's data, which extrapolates there; the
+    summary lists those stations).
     ``num_blades``, ``airfoil``, ``loss_model`` and ``member`` (``'maximum power'``, ``'thrust'`` or
     ``'ref_chord'``) describe the design; ``altitude`` or ``fluid`` its air.
     """
@@ -56,6 +60,7 @@ class TurbineDesign:
         return len(self.values["power"])
 
     def __getitem__(self, index):
+        index = range(len(self))[index]  # a negative index counts from the end; IndexError outside
         values = {name: value[index:index + 1] for name, value in self.values.items()}
         return TurbineDesign(values, self.num_blades, self.airfoil, self.loss_model, self.member, self.polar,
                              is_batch=False, fluid=self.fluid)
@@ -94,7 +99,25 @@ class TurbineDesign:
         for frac, chord, twist, a, a_t in zip(one.radial_fractions, one.chord, np.degrees(one.twist),
                                               one.axial_induction, one.tangential_induction):
             lines.append(f"  {frac:15.4f} {chord:12.5g} {twist:12.4f} {a:9.4f} {a_t:9.5f}")
+        outside = np.flatnonzero(one.reynolds_outside_data > 0.0)
+        if outside.size:
+            re = one.reynolds[outside]
+            lines += ["notes:", f"  {outside.size} station(s) outside the polar's Reynolds-number data, extrapolated "
+                                f"there (Re {np.min(re):.3g}..{np.max(re):.3g}) at r/R "
+                                + ", ".join(f"{x:.3f}" for x in one.radial_fractions[outside])]
         return "\n".join(lines)
+
+
+def _station_reynolds(out, polar):
+    """``reynolds`` and ``reynolds_outside_data`` of every station (as
+    :func:`~bild_mdo.results.design.station_reynolds` for a propeller)."""
+    reynolds = out["rho"][:, None] * out["inflow_speed"] * out["chord"] / out["mu"][:, None]
+    data = data_reynolds_range(polar)
+    outside = np.zeros(reynolds.shape)
+    if data is not None:
+        with np.errstate(invalid="ignore"):
+            outside = ((out["chord"] > 0.0) & ((reynolds < data[0]) | (reynolds > data[1]))).astype(float)
+    return {"reynolds": reynolds, "reynolds_outside_data": outside}
 
 
 def _inputs(wind_speed, tip_speed_ratio, rpm, radius, hub_radius_ratio, ref_radius_ratio, altitude, thrust,
@@ -192,6 +215,7 @@ def design_turbine(wind_speed=10.0, tip_speed_ratio=None, rpm=None, radius=40.0,
     out = run_turbine_bild(values, num_radial, num_blades, polar, loss_model, design_for,
                            None if fluid is None else fluid_arrays(fluid, nn))
     out["radial_fractions"] = out["radii"] / values["radius"][:, None]
+    out.update(_station_reynolds(out, polar))
     result = {"wind_speed": values["wind_speed"], **{name: values[name] for name in
                                                      ("rpm", "radius", "hub_radius_ratio", "ref_radius_ratio",
                                                       "altitude")},

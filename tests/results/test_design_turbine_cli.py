@@ -3,6 +3,7 @@ import argparse
 import io
 
 import numpy as np
+import pytest
 
 from bild_mdo.cli.design import add_design_arguments
 from bild_mdo.cli.design_turbine import run_turbine
@@ -42,11 +43,17 @@ def test_rated_power_prints_each_designs_power_curve():
     assert "60 m/s, reached at 7.5 m/s (region 2.5)" in text and "60 m/s, not reached below rated" in text
 
 
-def test_power_curve_options_without_turbine_exit_2_with_one_line(capsys):
+@pytest.mark.parametrize("argv, message", [
+    (["--rated-power", "1e6"], "--rated-power belongs to a turbine's power curve"),
+    (["--weibull-scale", "9"], "--weibull-scale belongs to a turbine's power curve"),
+    (["--turbine", "--max-tip-speed", "60"], "--max-tip-speed belongs to the power curve"),
+    (["--turbine", "--cut-out-speed", "20"], "--cut-out-speed belongs to the power curve"),
+])
+def test_power_curve_options_alone_exit_2_with_one_line(capsys, argv, message):
     from tests.cli.runner import run
 
-    code, out, err = run(capsys, "design", "--rated-power", "1e6")
-    assert code == 2 and "--rated-power belongs to a turbine's power curve" in err
+    code, out, err = run(capsys, "design", *argv)
+    assert code == 2 and message in err
     assert len(err.strip().splitlines()) == 1
 
 
@@ -62,4 +69,4 @@ def test_power_curve_files_from_the_command_line(tmp_path, capsys):
     assert set(table[:, 0]) == {0.0, 1.0} and table.shape[0] == 2 * 13
     code, out, err = run(capsys, "design", "--turbine", "--airfoil", "analytic", "--num-radial", "8",
                          "--power-curve-csv", str(csv))
-    assert code == 2 and "need --rated-power" in err and len(err.strip().splitlines()) == 1
+    assert code == 2 and "give it with --rated-power" in err and len(err.strip().splitlines()) == 1

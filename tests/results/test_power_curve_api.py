@@ -5,6 +5,7 @@ test_design_turbine.py), the cubic law of a Reynolds-independent polar at a fixe
 the same curve built through PowerCurveGroup with the ISA component (tests/energy/test_tip_speed_limit.py).
 """
 import numpy as np
+import openmdao.api as om
 import pytest
 
 from bild_mdo import PowerCurve, design_turbine, power_curve
@@ -36,22 +37,34 @@ def test_design_curve_keeps_the_designs_power_coefficient(rotor):
     v_r = (RATED / (0.5 * rho * np.pi * 40.0 ** 2 * rotor.power_coefficient)) ** (1.0 / 3.0)
     assert curve.rated_wind_speed == pytest.approx(v_r, rel=1e-6)
     np.testing.assert_allclose(curve.power[curve.wind_speed >= curve.rated_wind_speed], RATED, rtol=1e-9)
-    assert np.isnan(curve.tip_speed_limit_wind_speed) and curve.max_tip_speed == np.inf
+    assert curve.tip_speed_limit_wind_speed == curve.rated_wind_speed and curve.max_tip_speed == np.inf
     text = curve.summary()
     assert "annual energy" in text and f"{curve.annual_energy / 3.6e12:12.5g} GWh" in text
     assert len(text.splitlines()) == 10 + 9
 
 
 def test_design_curve_with_a_tip_speed_limit(rotor):
-    curve = rotor.power_curve(rated_power=RATED, max_tip_speed=60.0, num_wind_speeds=9)
+    curve = rotor.power_curve(rated_power=RATED, max_tip_speed=60.0, num_wind_speeds=13)
     # Omega R = 60 m/s from V = 60 / 7 m/s on (hand), a lower AEP than without the limit for the rotor of most
     # power at lambda = 7 (its C_P is largest at the design tip-speed ratio, which region 2.5 leaves).
     assert curve.tip_speed_limit_wind_speed == pytest.approx(60.0 / 7.0, rel=1e-14)
     tip = curve.rpm * np.pi / 30.0 * 40.0
     np.testing.assert_allclose(tip[curve.wind_speed >= 60.0 / 7.0], 60.0, rtol=1e-14)
-    free = rotor.power_curve(rated_power=RATED, num_wind_speeds=9)
+    free = rotor.power_curve(rated_power=RATED, num_wind_speeds=13)
     assert curve.rated_wind_speed > free.rated_wind_speed
     assert curve.annual_energy < free.annual_energy
+    # A limit not reached below rated changes nothing (region 2 on the same nodes).
+    high = rotor.power_curve(rated_power=RATED, max_tip_speed=200.0, num_wind_speeds=13)
+    assert high.annual_energy == pytest.approx(free.annual_energy, rel=1e-9)
+
+
+def test_power_above_rated_below_the_rated_wind_speed_is_refused(rotor):
+    # At a 50-m/s limit this rotor's power at zero pitch peaks near 12 m/s (1.43 MW: analyze_rotor) and falls
+    # before it rises again: 1.43 MW is reached at several wind speeds and the rated-speed solve finds 19.5 m/s.
+    # At 21 points a node exceeds rated power, at 13 the power falls between nodes: refused either way.
+    for nw in (13, 21):
+        with pytest.raises(om.AnalysisError, match="exceeds rated power or falls as the wind rises"):
+            rotor.power_curve(rated_power=1.43e6, max_tip_speed=50.0, num_wind_speeds=nw)
 
 
 @TEST_ROTORS_WARN
@@ -75,6 +88,9 @@ def test_power_curve_of_a_blade_is_the_groups():
                         cut_in_speed=values["cut_in_speed"][1], cut_out_speed=values["cut_out_speed"][1],
                         altitude=values["altitude"][1], num_wind_speeds=21)
     assert alone.annual_energy == pytest.approx(curve[1].annual_energy, rel=1e-12)
+    assert curve[-1].annual_energy == curve[1].annual_energy
+    with pytest.raises(IndexError):
+        curve[2]
 
 
 @pytest.mark.parametrize("change, message", [
@@ -83,6 +99,7 @@ def test_power_curve_of_a_blade_is_the_groups():
     (dict(max_tip_speed=0.0), "max_tip_speed must be"),
     (dict(twist=np.zeros(5)), "same number of stations"),
     (dict(num_wind_speeds=4), "num_wind_speeds"),
+    (dict(max_tip_speed=20.0), "reached above cut_in_speed"),
 ])
 def test_power_curve_rejects_bad_inputs_in_one_line(change, message):
     args = dict(chord=np.full(6, 2.0), twist=np.full(6, 0.1), radius=40.0, hub_radius=2.0, tip_speed_ratio=7.0,
