@@ -104,12 +104,17 @@ def station_reynolds(outputs, values, polar):
     omega = values["rpm"][:, None] * (RPM_TO_REV_PER_S * 2.0 * np.pi)
     w0 = np.hypot(values["v_axial"][:, None], omega * outputs["radii"])
     reynolds = outputs["rho"][:, None] * w0 * outputs["chord"] / outputs["mu"][:, None]
+    return {"reynolds": reynolds, "reynolds_outside_data": reynolds_outside_data(reynolds, outputs["chord"], polar)}
+
+
+def reynolds_outside_data(reynolds, chord, polar):
+    """1.0 where a loaded station's chord Reynolds number lies outside the polar's data (which extrapolates
+    there), else 0.0 (all 0.0 for a polar without a data range)."""
     data = data_reynolds_range(polar)
-    outside = np.zeros(reynolds.shape)
-    if data is not None:
-        with np.errstate(invalid="ignore"):
-            outside = ((outputs["chord"] > 0.0) & ((reynolds < data[0]) | (reynolds > data[1]))).astype(float)
-    return {"reynolds": reynolds, "reynolds_outside_data": outside}
+    if data is None:
+        return np.zeros(reynolds.shape)
+    with np.errstate(invalid="ignore"):
+        return ((chord > 0.0) & ((reynolds < data[0]) | (reynolds > data[1]))).astype(float)
 
 
 def _checked_inputs(input_mode, speed, rpm, radius, hub_radius_ratio, ref_radius_ratio, ref_chord, altitude,

@@ -27,6 +27,7 @@ from bild_mdo.energy.wind_speeds import MIN_WIND_SPEEDS
 from bild_mdo.fluid import fluid_point, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.io.geometry import unit_key
+from bild_mdo.results.batch_values import BatchValues
 
 __all__ = ["PowerCurve", "power_curve"]
 
@@ -37,7 +38,7 @@ ROTOR_VALUES = {"rated_wind_speed": "m/s", "annual_energy": "J", "capacity_facto
 _KNEE = "tip_speed_limit_wind_speed"
 
 
-class PowerCurve:
+class PowerCurve(BatchValues):
     """The power curve(s) and AEP from :func:`power_curve` (SI units, angles in rad).
 
     Attributes (``(nw,)`` per curve and scalars for one rotor, ``(nn, nw)`` and ``(nn,)`` for a batch):
@@ -52,19 +53,8 @@ class PowerCurve:
         self.values = values
         self.is_batch = is_batch
 
-    def __getattr__(self, name):
-        values = self.__dict__.get("values", {})
-        if name not in values:
-            raise AttributeError(name)
-        value = values[name]
-        return value if self.is_batch else (value[0] if value.ndim == 2 else float(value[0]))
-
-    def __len__(self):
-        return len(self.values["annual_energy"])
-
     def __getitem__(self, index):
-        index = range(len(self))[index]  # a negative index counts from the end; IndexError outside
-        return PowerCurve({name: value[index:index + 1] for name, value in self.values.items()}, is_batch=False)
+        return PowerCurve(self._row_values(index), is_batch=False)
 
     def to_csv(self, path):
         """Write the curve(s) as CSV with units in the header, one row per wind speed (and rotor), the pitch in

@@ -16,19 +16,20 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo import validation
-from bild_mdo.airfoil.load_path_table import data_reynolds_range
 from bild_mdo.atmosphere import MAX_ALTITUDE
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.turbine_problem import TURBINE_DISTRIBUTIONS, TURBINE_VALUES, run_turbine_bild  # noqa: F401
 from bild_mdo.constants import RPM_TO_RAD_PER_S
 from bild_mdo.fluid import fluid_arrays, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
+from bild_mdo.results.batch_values import BatchValues
+from bild_mdo.results.design import reynolds_outside_data
 
 __all__ = ["TurbineDesign", "design_turbine"]
 
 
 
-class TurbineDesign:
+class TurbineDesign(BatchValues):
     """The ideal turbine blade(s) and performance from :func:`design_turbine` (SI units, angles in rad).
 
     Attributes (arrays ``(nn,)`` / ``(nn, nr)`` for a batch, scalars / ``(nr,)`` for one design): the inputs
@@ -49,21 +50,9 @@ class TurbineDesign:
         self.is_batch = is_batch
         self.fluid = fluid
 
-    def __getattr__(self, name):
-        values = self.__dict__.get("values", {})
-        if name not in values:
-            raise AttributeError(name)
-        value = values[name]
-        return value if self.is_batch else (value[0] if value.ndim == 2 else float(value[0]))
-
-    def __len__(self):
-        return len(self.values["power"])
-
     def __getitem__(self, index):
-        index = range(len(self))[index]  # a negative index counts from the end; IndexError outside
-        values = {name: value[index:index + 1] for name, value in self.values.items()}
-        return TurbineDesign(values, self.num_blades, self.airfoil, self.loss_model, self.member, self.polar,
-                             is_batch=False, fluid=self.fluid)
+        return TurbineDesign(self._row_values(index), self.num_blades, self.airfoil, self.loss_model, self.member,
+                             self.polar, is_batch=False, fluid=self.fluid)
 
     def power_curve(self, rated_power, max_tip_speed=None, **options):
         """The power curve and AEP of the designed blade(s) at their design tip-speed ratio
@@ -112,12 +101,7 @@ def _station_reynolds(out, polar):
     """``reynolds`` and ``reynolds_outside_data`` of every station (as
     :func:`~bild_mdo.results.design.station_reynolds` for a propeller)."""
     reynolds = out["rho"][:, None] * out["inflow_speed"] * out["chord"] / out["mu"][:, None]
-    data = data_reynolds_range(polar)
-    outside = np.zeros(reynolds.shape)
-    if data is not None:
-        with np.errstate(invalid="ignore"):
-            outside = ((out["chord"] > 0.0) & ((reynolds < data[0]) | (reynolds > data[1]))).astype(float)
-    return {"reynolds": reynolds, "reynolds_outside_data": outside}
+    return {"reynolds": reynolds, "reynolds_outside_data": reynolds_outside_data(reynolds, out["chord"], polar)}
 
 
 def _inputs(wind_speed, tip_speed_ratio, rpm, radius, hub_radius_ratio, ref_radius_ratio, altitude, thrust,
