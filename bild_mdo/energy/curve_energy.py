@@ -25,10 +25,10 @@ import openmdao.api as om
 
 from bild_mdo.energy.annual_energy import HOURS_PER_YEAR, weibull_density, weibull_survival
 from bild_mdo.energy.wind_speeds import (
+    TIP_SPEED_LIMIT_WIND_SPEED,
+    curve_intervals,
     declare_tip_speed_limit_option,
     declare_wind_speed_option,
-    lobatto,
-    region2_split,
     region_sizes,
 )
 
@@ -37,7 +37,7 @@ _YEAR = HOURS_PER_YEAR * 3600.0
 TRIM_RTOL = 1e-6
 _LIMITS = ("cut_in_speed", "rated_wind_speed", "cut_out_speed")
 _NODE_INPUTS = _LIMITS + ("rated_power", "weibull_scale", "weibull_shape")
-_KNEE = "tip_speed_limit_wind_speed"
+_KNEE = TIP_SPEED_LIMIT_WIND_SPEED
 _UNITS = {_KNEE: "m/s", "cut_in_speed": "m/s", "rated_wind_speed": "m/s", "cut_out_speed": "m/s", "rated_power": "W",
           "weibull_scale": "m/s", "weibull_shape": None}
 _DEFAULTS = {_KNEE: 11.0, "cut_in_speed": 3.0, "rated_wind_speed": 11.0, "cut_out_speed": 25.0, "rated_power": 5.0e6,
@@ -88,7 +88,6 @@ class CurveEnergyComp(om.ExplicitComponent):
 
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
-        n2, n3 = region_sizes(nw, self.options["tip_speed_limit"])
         self.add_input("wind_speed", val=np.linspace(3.0, 25.0, nw)[None, :].repeat(nn, axis=0), units="m/s",
                        desc="wind speeds of the power curve")
         self.add_input("power", val=np.full((nn, nw), 1.0e6), units="W", desc="power at each wind speed")
@@ -98,17 +97,14 @@ class CurveEnergyComp(om.ExplicitComponent):
             self.add_input(name, val=np.full(nn, _DEFAULTS[name]), units=_UNITS[name])
         self.add_output("annual_energy", val=np.ones(nn), units="J", ref=1e13, desc="annual energy production")
         self.add_output("capacity_factor", val=np.ones(nn), units=None, desc="AEP / (8760 h rated power)")
-        # The intervals of region 2 (lower and upper limit, the quadrature weight of each point of the curve).
-        if limited:
-            n2a, n2b, _ = region2_split(nw)
-            self._intervals = [("cut_in_speed", _KNEE, np.concatenate((lobatto(n2a)[1], np.zeros(nw - n2a)))),
-                               (_KNEE, "rated_wind_speed", np.concatenate((np.zeros(n2a - 1), lobatto(n2b)[1],
-                                                                           np.zeros(n3 - 1))))]
-        else:
-            self._intervals = [("cut_in_speed", "rated_wind_speed", np.concatenate((lobatto(n2)[1],
-                                                                                    np.zeros(n3 - 1))))]
-        # Quadrature weight of each point in region 3 (the rated point, index n2 - 1, is in region 2 too).
-        self._w3 = np.concatenate((np.zeros(n2 - 1), lobatto(n3)[1]))
+        # The rules of region 2 (lower and upper limit, the quadrature weight of each point of the curve) and the
+        # weights of region 3 (the rated point, index n2 - 1, is in region 2 too).
+        weighted = []
+        for interval in curve_intervals(nw, limited):
+            w = np.zeros(nw)
+            w[interval.points] = interval.weights
+            weighted.append((interval.low, interval.high, w))
+        self._intervals, self._w3 = weighted[:-1], weighted[-1][2]
         rows_d, cols_d = np.repeat(np.arange(nn), nw), np.arange(nn * nw)
         rows = np.arange(nn)
         for out in ("annual_energy", "capacity_factor"):
@@ -146,11 +142,11 @@ class CurveEnergyComp(om.ExplicitComponent):
         # Below rated the power rises with the wind speed (P ~ C_P V**3 at the design tip-speed ratio); at a
         # tip-speed limit it can stall, fall and rise again, so that rated power is reached at several wind
         # speeds and the rated-speed solve may have found a later one: refused, never integrated silently.
-        over = np.concatenate((below[:, :-1] > p_r * (1.0 + TRIM_RTOL),
-                               np.diff(below, axis=1) < -TRIM_RTOL * p_r), axis=1)
-        if np.any(over):
-            i, j = (int(x[0]) for x in np.nonzero(over))
-            j = j if j < n2 - 1 else j - (n2 - 1) + 1
+        wrong = np.zeros(below.shape, dtype=bool)
+        wrong[:, :-1] = below[:, :-1] > p_r * (1.0 + TRIM_RTOL)  # above rated before the rated point
+        wrong[:, 1:] |= np.diff(below, axis=1) < -TRIM_RTOL * p_r  # lower than the point before it
+        if np.any(wrong):
+            i, j = (int(x[0]) for x in np.nonzero(wrong))
             raise om.AnalysisError(
                 f"{self.msginfo}: below the rated wind speed {np.real(inputs['rated_wind_speed'][i]):.6g} m/s the power "
                 f"exceeds rated power or falls as the wind rises, at {np.real(inputs['wind_speed'][i, j]):.6g} m/s "

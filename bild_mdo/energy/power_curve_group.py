@@ -101,6 +101,7 @@ from bild_mdo.energy.rated_speed import RatedSpeedGroup
 from bild_mdo.energy.rotor_broadcast import BROADCAST_DISTRIBUTIONS, BROADCAST_SCALARS, RotorBroadcastComp
 from bild_mdo.energy.rotor_speed import RotorSpeedComp
 from bild_mdo.energy.wind_speeds import (
+    TIP_SPEED_LIMIT_WIND_SPEED,
     WindSpeedsComp,
     declare_tip_speed_limit_option,
     declare_wind_speed_option,
@@ -151,7 +152,7 @@ class PowerCurveGroup(om.Group):
         self.add_subsystem("rated", RatedSpeedGroup(num_nodes=nn, tip_speed_limit=limited, **bem),
                            promotes_inputs=list(_BLADE + _FLUID) + ["tip_speed_ratio", "rated_power"] + tip,
                            promotes_outputs=["rated_wind_speed"])
-        knee = ["tip_speed_limit_wind_speed"] if limited else []
+        knee = [TIP_SPEED_LIMIT_WIND_SPEED] if limited else []
         self.add_subsystem("wind", WindSpeedsComp(num_nodes=nn, num_wind_speeds=nw, tip_speed_limit=limited),
                            promotes_inputs=["cut_in_speed", "rated_wind_speed", "cut_out_speed"]
                            + (tip + ["tip_speed_ratio"] if limited else []),

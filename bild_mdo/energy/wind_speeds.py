@@ -23,11 +23,15 @@ kink where ``V_tip,max = lambda V_r``).
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 import openmdao.api as om
 
 #: Fewest points of the curve: three per region (cut-in, one interior node, rated; rated, one, cut-out).
 MIN_WIND_SPEEDS = 5
+#: The wind speed where the tip speed reaches ``max_tip_speed`` (region 2.5 begins; at most the rated one).
+TIP_SPEED_LIMIT_WIND_SPEED = "tip_speed_limit_wind_speed"
 
 
 def lobatto(n):
@@ -67,6 +71,36 @@ def region2_split(num_wind_speeds):
     return n2a, n2b, rest - n2b
 
 
+class Interval(NamedTuple):
+    """One Lobatto rule of the curve: its limits (the names of the wind speeds at its ends), its points
+    ``points`` (a slice of the curve, both ends included), their fractions ``t`` of the interval (0 ... 1) and
+    their Lobatto weights on ``[-1, 1]``."""
+
+    low: str
+    high: str
+    points: slice
+    t: np.ndarray
+    weights: np.ndarray
+
+
+def curve_intervals(num_wind_speeds, tip_speed_limit=False):
+    """The Lobatto rules of the curve in order (module docstring): region 2 (one, or two split at
+    :data:`TIP_SPEED_LIMIT_WIND_SPEED` with ``tip_speed_limit``), then region 3; consecutive rules share their
+    end point."""
+    if tip_speed_limit:
+        sizes = region2_split(num_wind_speeds)
+        limits = ("cut_in_speed", TIP_SPEED_LIMIT_WIND_SPEED, "rated_wind_speed", "cut_out_speed")
+    else:
+        sizes = region_sizes(num_wind_speeds)
+        limits = ("cut_in_speed", "rated_wind_speed", "cut_out_speed")
+    intervals, start = [], 0
+    for low, high, n in zip(limits[:-1], limits[1:], sizes):
+        x, weights = lobatto(n)
+        intervals.append(Interval(low, high, slice(start, start + n), 0.5 * (x + 1.0), weights))
+        start += n - 1
+    return intervals
+
+
 def declare_wind_speed_option(options):
     """Declare ``num_wind_speeds`` (points of the power curve, cut-in to cut-out)."""
     options.declare("num_wind_speeds", types=int, default=13, lower=MIN_WIND_SPEEDS,
@@ -98,6 +132,9 @@ def check_rated_inside(v_in, v_rated, v_out, where):
             "power reaches the rated power "
             f"at {v_rated[i]:.6g} m/s, which {side} (cut-in {v_in[i]:.6g} m/s, cut-out {v_out[i]:.6g} m/s; "
             f"rotor {i}): {fix}")
+
+
+_KNEE = TIP_SPEED_LIMIT_WIND_SPEED
 
 
 class WindSpeedsComp(om.ExplicitComponent):
@@ -141,41 +178,35 @@ class WindSpeedsComp(om.ExplicitComponent):
     def setup(self):
         nn, nw = self.options["num_nodes"], self.options["num_wind_speeds"]
         limited = self.options["tip_speed_limit"]
-        n2, n3 = region_sizes(nw, limited)
         for name, val in (("cut_in_speed", 3.0), ("rated_wind_speed", 11.0), ("cut_out_speed", 25.0)):
             self.add_input(name, val=np.full(nn, val), units="m/s")
         self.add_output("wind_speed", val=np.ones((nn, nw)), units="m/s", desc="wind speeds of the power curve")
-        t3 = 0.5 * (lobatto(n3)[0][1:] + 1.0)
+        # d V / d (each limit) at each point, the same for every rotor: a point shared by two rules is the first
+        # one's (the end of one rule, the start of the next).
+        self._weights = {}
+        for k, interval in enumerate(curve_intervals(nw, limited)):
+            first = 0 if k == 0 else 1
+            owned = np.arange(interval.points.start + first, interval.points.stop)
+            t = interval.t[first:]
+            for name, share in ((interval.low, 1.0 - t), (interval.high, t)):
+                self._weights.setdefault(name, np.zeros(nw))[owned] += share
         rows, cols = np.arange(nn * nw), np.repeat(np.arange(nn), nw)
         if limited:
-            n2a, n2b, _ = region2_split(nw)
-            t2a, t2b = 0.5 * (lobatto(n2a)[0] + 1.0), 0.5 * (lobatto(n2b)[0][1:] + 1.0)
-            # d V / d (cut-in, V_k, rated, cut-out) at each point.
-            self._weights = {"cut_in_speed": np.concatenate((1.0 - t2a, np.zeros(n2b - 1 + n3 - 1))),
-                             "knee": np.concatenate((t2a, 1.0 - t2b, np.zeros(n3 - 1))),
-                             "rated_wind_speed": np.concatenate((np.zeros(n2a), t2b, 1.0 - t3)),
-                             "cut_out_speed": np.concatenate((np.zeros(n2), t3))}
             self.add_input("max_tip_speed", val=np.full(nn, 80.0), units="m/s", desc="largest tip speed Omega R")
             self.add_input("tip_speed_ratio", val=np.full(nn, 7.0), units=None, desc="design tip-speed ratio")
-            self.add_output("tip_speed_limit_wind_speed", val=np.full(nn, 11.0), units="m/s",
+            self.add_output(_KNEE, val=np.full(nn, 11.0), units="m/s",
                             desc="wind speed where the tip speed reaches max_tip_speed (at most the rated one)")
             node = np.arange(nn)
-            self.declare_partials("tip_speed_limit_wind_speed", ["max_tip_speed", "tip_speed_ratio",
-                                                                 "rated_wind_speed"], rows=node, cols=node)
+            self.declare_partials(_KNEE, ["max_tip_speed", "tip_speed_ratio", "rated_wind_speed"], rows=node, cols=node)
             for name in ("cut_in_speed", "cut_out_speed"):
                 self.declare_partials("wind_speed", name, rows=rows, cols=cols, val=np.tile(self._weights[name], nn))
             self.declare_partials("wind_speed", "rated_wind_speed", rows=rows, cols=cols)
             # Only the points of region 2 move with V_k.
-            self._knee_points = np.flatnonzero(self._weights["knee"])
+            self._knee_points = np.flatnonzero(self._weights[_KNEE])
             knee_rows = (np.arange(nn)[:, None] * nw + self._knee_points[None, :]).ravel()
             self.declare_partials("wind_speed", ["max_tip_speed", "tip_speed_ratio"], rows=knee_rows,
                                   cols=np.repeat(np.arange(nn), self._knee_points.size))
         else:
-            t2 = 0.5 * (lobatto(n2)[0] + 1.0)
-            # d V / d (cut-in, rated, cut-out) at each point, the same for every rotor.
-            self._weights = {"cut_in_speed": np.concatenate((1.0 - t2, np.zeros(n3 - 1))),
-                             "rated_wind_speed": np.concatenate((t2, 1.0 - t3)),
-                             "cut_out_speed": np.concatenate((np.zeros(n2), t3))}
             for name, value in self._weights.items():
                 self.declare_partials("wind_speed", name, rows=rows, cols=cols, val=np.tile(value, nn))
 
@@ -197,8 +228,8 @@ class WindSpeedsComp(om.ExplicitComponent):
         check_rated_inside(inputs["cut_in_speed"], inputs["rated_wind_speed"], inputs["cut_out_speed"], self.msginfo)
         limits = {name: inputs[name] for name in ("cut_in_speed", "rated_wind_speed", "cut_out_speed")}
         if self.options["tip_speed_limit"]:
-            limits["knee"], _ = self._knee(inputs)
-            outputs["tip_speed_limit_wind_speed"] = limits["knee"]
+            limits[_KNEE], _ = self._knee(inputs)
+            outputs[_KNEE] = limits[_KNEE]
         outputs["wind_speed"] = sum(limits[name][:, None] * value[None, :] for name, value in self._weights.items())
 
     def compute_partials(self, inputs, partials):
@@ -210,9 +241,9 @@ class WindSpeedsComp(om.ExplicitComponent):
                   "tip_speed_ratio": np.where(binds, -inputs["max_tip_speed"] / tsr ** 2, 0.0),
                   "rated_wind_speed": np.where(binds, 0.0, 1.0)}
         for name, value in d_knee.items():
-            partials["tip_speed_limit_wind_speed", name] = value
+            partials[_KNEE, name] = value
             if name == "rated_wind_speed":
                 partials["wind_speed", name] = (self._weights["rated_wind_speed"][None, :]
-                                                + value[:, None] * self._weights["knee"][None, :]).ravel()
+                                                + value[:, None] * self._weights[_KNEE][None, :]).ravel()
             else:
-                partials["wind_speed", name] = (value[:, None] * self._weights["knee"][None, self._knee_points]).ravel()
+                partials["wind_speed", name] = (value[:, None] * self._weights[_KNEE][None, self._knee_points]).ravel()

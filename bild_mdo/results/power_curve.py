@@ -23,7 +23,7 @@ from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE, isa
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.energy.power_curve_group import PowerCurveGroup
-from bild_mdo.energy.wind_speeds import MIN_WIND_SPEEDS
+from bild_mdo.energy.wind_speeds import MIN_WIND_SPEEDS, TIP_SPEED_LIMIT_WIND_SPEED
 from bild_mdo.fluid import fluid_point, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.io.geometry import unit_key
@@ -35,7 +35,7 @@ __all__ = ["PowerCurve", "power_curve"]
 CURVE_VALUES = {"wind_speed": "m/s", "rpm": "rpm", "collective_pitch": "rad", "power": "W", "thrust": "N",
                 "torque": "N*m", "power_coefficient": None, "thrust_coefficient": None}
 ROTOR_VALUES = {"rated_wind_speed": "m/s", "annual_energy": "J", "capacity_factor": None}
-_KNEE = "tip_speed_limit_wind_speed"
+_KNEE = TIP_SPEED_LIMIT_WIND_SPEED
 
 
 class PowerCurve(BatchValues):
