@@ -14,6 +14,7 @@ from bild_mdo.bem.analyze_inclined import check_inflow, inclined_arguments, run_
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.blade_element import evaluate_section
 from bild_mdo.bem.flow_states import ON_INVALID, SOLVE_RANGES
+from bild_mdo.bem.inflow_residual import HIGH_INDUCTION, resolve_high_induction
 from bild_mdo.bem.loads import SECTION_OUTPUTS
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS, warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
@@ -122,7 +123,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
                   altitude=0.0, loss_model="tip_hub", radii=None, dr=None, rho=None, mu=None,
                   on_invalid="warn", solve_range="physical", collective_pitch=0.0, speed_of_sound=None, fluid=None,
                   rotor_type="propeller", precone=0.0, tilt=0.0, yaw=0.0, hub_height=None, shear_exponent=0.0,
-                  num_sectors=1):
+                  num_sectors=1, high_induction=None):
     """Analyse one rotor or a batch of rotors with BEM theory: in axial flow, inclined flow, or as a wind turbine.
 
     Parameters
@@ -179,6 +180,11 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         then, for ``V_x > 0``, reversed tangential flow), accepting only roots with ``W > 0``.
         'full': the first sign change of the residual in ``[-pi/2, pi)``, as before the flow
         states existed (mirror roots kept and flagged).
+    high_induction : {None, 'none', 'buhl'}
+        The momentum thrust of an annulus past ``a = 0.4`` (``V_x > 0``): 'none', momentum theory, the
+        station flagged ``TURBULENT_WAKE``; 'buhl', Buhl's (2005) empirical thrust, as CCBlade and AeroDyn
+        apply, the station valid (:mod:`bild_mdo.bem.inflow_residual`).  None (default): 'buhl' for a
+        turbine, 'none' for a propeller.
     rotor_type : {'propeller', 'turbine'}
         'propeller' (default): thrust-producing rotors, as always.  'turbine': a wind turbine,
         ``v_axial`` the wind speed at hub height (> 0), ``polar`` the airfoil's own polar,
@@ -220,6 +226,8 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     validation.choice("loss_model", loss_model, LOSS_MODELS)
     validation.choice("on_invalid", on_invalid, ON_INVALID)
     validation.choice("solve_range", solve_range, SOLVE_RANGES)
+    high_induction = resolve_high_induction(high_induction, rotor_type)
+    validation.choice("high_induction", high_induction, HIGH_INDUCTION)
     num_blades = validation.integer("num_blades", num_blades)
     if (rho is None) != (mu is None):
         raise ValueError("give both rho and mu, or neither (then the ISA at altitude is used)")
@@ -311,12 +319,12 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         check_inflow(s, radii_all, geometry, num_sectors)
         values = dict({k: v for k, v in s.items() if k != "altitude" or use_atmosphere}, chord=chord, twist=twist)
         group_kw.update(num_blades=int(num_blades), polar=polar, loss_model=loss_model, use_atmosphere=use_atmosphere,
-                        on_invalid=on_invalid, solve_range=solve_range)
+                        on_invalid=on_invalid, solve_range=solve_range, high_induction=high_induction)
         return run_inclined(values, group_kw, nn, nr, single, rotor_type, num_sectors, geometry)
     prob = om.Problem(BEMAnalysisGroup(num_nodes=nn, num_radial=nr, num_blades=int(num_blades),
                                        polar=polar, loss_model=loss_model,
                                        use_atmosphere=use_atmosphere, on_invalid=on_invalid,
-                                       solve_range=solve_range, **group_kw),
+                                       solve_range=solve_range, high_induction=high_induction, **group_kw),
                       reports=False)
     prob.setup(check=False)
     for name in ("radius", "hub_radius", "rpm", "v_axial", "collective_pitch"):
@@ -338,7 +346,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
                          "collective_pitch")}
     values, _ = evaluate_section(fields["phi"], radii=fields["radii"], chord=chord, twist=twist,
                                  num_blades=int(num_blades), polar=polar, loss_model=loss_model,
-                                 loads=False, partials=False, **node)
+                                 loads=False, partials=False, high_induction=high_induction, **node)
     fields["residual"] = values["residual"]
     fields["flow_state"] = np.rint(fields["flow_state"]).astype(int)
     warn_supersonic_tip(fields["tip_mach"], what="rotor")

@@ -152,7 +152,8 @@ def run_inclined(prob_values, group_kw, nn, nr, single, rotor_type, num_sectors,
                                  chord=np.tile(prob_values["chord"], (1, num_sectors)),
                                  twist=np.tile(prob_values["twist"], (1, num_sectors)),
                                  num_blades=group_kw["num_blades"], polar=polar, loss_model=group_kw["loss_model"],
-                                 loads=False, partials=False, **node)
+                                 high_induction=group_kw.get("high_induction", "none"), loads=False, partials=False,
+                                 **node)
     fields["residual"] = values["residual"]
     fields["flow_state"] = np.rint(fields["flow_state"]).astype(int)
     for name in _SECTOR_UNITS:

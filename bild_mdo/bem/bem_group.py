@@ -7,7 +7,7 @@ import openmdao.api as om
 from bild_mdo.acoustics.noise_options import NOISE_OUTPUTS, declare_noise_options
 from bild_mdo.acoustics.rotor_noise_group import make_noise_group
 from bild_mdo.atmosphere import AtmosphereComp
-from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_section_options
+from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_high_induction_option, declare_section_options
 from bild_mdo.bem.flow_states import declare_flow_state_options
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
@@ -37,6 +37,10 @@ class BEMAnalysisGroup(om.Group):
         without one gets the zero-loading fallback and code ``NO_SOLUTION``.  'full': the first
         sign change in ``[-pi/2, pi)``, as before the flow states existed (mirror roots with
         ``W < 0`` are kept and flagged ``MIRROR_ROOT``).  See :mod:`bild_mdo.bem.flow_states`.
+    high_induction : {'none', 'buhl'}
+        The momentum thrust above ``a = 0.4``: 'none' (default; such stations are flagged
+        ``TURBULENT_WAKE``) or Buhl's (2005) correction, as CCBlade and AeroDyn apply
+        (:mod:`bild_mdo.bem.inflow_residual`).
     on_invalid : {'warn', 'raise', 'ignore'}
         Stations in an invalid flow state (``NO_SOLUTION``, ``TURBULENT_WAKE``, ``MIRROR_ROOT``):
         one :class:`~bild_mdo.bem.flow_states.BEMStateWarning` per run naming them (default),
@@ -82,6 +86,7 @@ class BEMAnalysisGroup(om.Group):
 
     def initialize(self):
         declare_section_options(self.options)
+        declare_high_induction_option(self.options)
         declare_flow_state_options(self.options)
         self.options.declare("use_atmosphere", types=bool, default=True,
                              desc="compute rho and mu from the ISA at input altitude (else they are inputs)")
@@ -94,7 +99,8 @@ class BEMAnalysisGroup(om.Group):
         opts = self.options
         nn, nr = opts["num_nodes"], opts["num_radial"]
         section = dict(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
-                       polar=opts["polar"], loss_model=opts["loss_model"])
+                       polar=opts["polar"], loss_model=opts["loss_model"],
+                       high_induction=opts["high_induction"])
 
         if opts["use_atmosphere"]:
             self.add_subsystem("atmosphere", AtmosphereComp(num_nodes=nn),

@@ -46,8 +46,8 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo.airfoil.polar import Polar
-from bild_mdo.bem.inflow_residual import (force_coefficients, induced_velocities, inflow_residual,
-                                          inflow_residual_value, sign_of_sine)
+from bild_mdo.bem.inflow_residual import (HIGH_INDUCTION, buhl_axial_velocity, buhl_term, force_coefficients,
+                                          induced_velocities, inflow_residual, inflow_residual_value, sign_of_sine)
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
 from bild_mdo.bem.station_velocities import STATION_VELOCITIES, station_mode
 from bild_mdo.constants import RPM_TO_RAD_PER_S
@@ -112,11 +112,12 @@ def _station_setup(v_axial, rpm, radii, chord, twist, rho, mu, radius, num_blade
 
 def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
                       num_blades, polar, loss_model, speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND,
-                      collective_pitch=0.0, v_theta=None):
+                      collective_pitch=0.0, v_theta=None, high_induction="none"):
     """A real ``residual(phi, idx) -> (R, dR/dphi)`` over flat station indices for the solver.
 
     All inputs are real arrays already broadcast to the flat station shape; ``v_theta`` (optional)
-    replaces ``Omega r`` by a given tangential freestream speed (:func:`blade_speed`).
+    replaces ``Omega r`` by a given tangential freestream speed (:func:`blade_speed`);
+    ``high_induction`` as :func:`~bild_mdo.bem.inflow_residual.inflow_residual`'s.
     ``dR/dphi`` is the total derivative along phi (through alpha and F; ``M`` and ``r/R`` do not
     depend on phi).
     """
@@ -143,6 +144,10 @@ def residual_function(v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_ra
         d_cl = sig * (lam * s + c)
         d_cd = sig * (lam * c - s)
         d_F = 4.0 * abs_s * (lam * c - s)
+        if high_induction == "buhl":
+            t = buhl_term(phi, v_axial[idx], v_theta[idx], sig, pv.cl, pv.cd, F)
+            value, d_explicit = value + t.value, d_explicit + t.d_phi
+            d_cl, d_cd, d_F = d_cl + t.d_cl, d_cd + t.d_cd, d_F + t.d_F
         return value, d_explicit - d_cl * pv.dcl_dalpha - d_cd * pv.dcd_dalpha + d_F * dF_dphi
 
     return residual
@@ -189,7 +194,8 @@ def inflow_angle_guess(v_axial, rpm, radii, chord, twist, num_blades, lift_slope
 
 def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hub_radius,
                      num_blades, polar, loss_model, loads=True, partials=True, unloaded=None,
-                     speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND, collective_pitch=0.0, v_theta=None):
+                     speed_of_sound=_SEA_LEVEL_SPEED_OF_SOUND, collective_pitch=0.0, v_theta=None,
+                     high_induction="none"):
     """Residual, aerodynamics and (optionally) loads at every station, with partials.
 
     Parameters
@@ -215,6 +221,8 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         Tangential freestream speed of each station (m/s), shape (nn, nr), instead of ``Omega r``
         (inclined flow, :mod:`bild_mdo.bem.wind_components`; ``v_axial`` is then per station too).
         Its partials are keyed ``'v_theta'`` (and none are keyed ``'rpm'``).
+    high_induction : {'none', 'buhl'}
+        Buhl's thrust above ``a = 0.4`` (:mod:`bild_mdo.bem.inflow_residual`): the residual and ``u_axial``.
 
     Returns
     -------
@@ -242,7 +250,8 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
     pv = polar.evaluate(alpha, reynolds, mach=mach_arg, radial_fraction=fraction)
     loss = prandtl_loss(phi, radii, radius, hub_radius, num_blades, loss_model)
     mach = w0 / speed_of_sound
-    values = {"residual": inflow_residual_value(phi, v_axial, v_theta, sigma, pv.cl, pv.cd, loss.F),
+    values = {"residual": inflow_residual_value(phi, v_axial, v_theta, sigma, pv.cl, pv.cd, loss.F,
+                                                high_induction),
               "alpha": alpha * ones, "reynolds": reynolds * ones, "mach": mach * ones, "lift_coefficient": pv.cl,
               "drag_coefficient": pv.cd,
               "loss_factor": loss.F * ones}
@@ -251,6 +260,8 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         # Eq. (8) with F (mass flux rho |u_axial|: see bild_mdo.bem.inflow_residual)
         denom = 4.0 * loss.F * (sign_of_sine(phi) * np.sin(phi)) * np.cos(phi) + sigma * c_theta
         u_axial = v_axial + v_theta * sigma * c_x / denom
+        if high_induction == "buhl":
+            u_axial = u_axial + buhl_axial_velocity(phi, v_axial, v_theta, sigma, pv.cl, pv.cd, loss.F)
         u_theta = 2.0 * v_theta * sigma * c_theta / denom
         # Eq. (7): W^2 = u_axial^2 + (V_theta - u_theta/2)^2
         w2 = u_axial**2 + (v_theta - 0.5 * u_theta) ** 2
@@ -270,7 +281,7 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
         return values, {}
     d = _section_partials(phi, v_axial, v_theta, d_vtheta, radii, chord, sigma, w0,
                           reynolds, rho, mu, pv, loss, num_blades, loss_model, loads, ones,
-                          mach, speed_of_sound, fraction, radius)
+                          mach, speed_of_sound, fraction, radius, high_induction)
     if loads and unloaded is not None and np.any(unloaded):
         d_w0 = _lin((_real(v_axial / w0), {"v_axial": ones}), (_real(v_theta / w0), d_vtheta))
         for name, fixed in (("u_axial", {"v_axial": ones}), ("u_theta", {}), ("inflow_speed", d_w0),
@@ -284,13 +295,14 @@ def evaluate_section(phi, v_axial, rpm, radii, chord, twist, rho, mu, radius, hu
 
 
 def _section_partials(phi, v_axial, v_theta, d_vtheta, radii, chord, sigma, w0, reynolds, rho, mu,
-                      pv, loss, num_blades, loss_model, loads, ones, mach, speed_of_sound, fraction, radius):
+                      pv, loss, num_blades, loss_model, loads, ones, mach, speed_of_sound, fraction, radius,
+                      high_induction="none"):
     """Forward-mode partials of every section quantity with respect to the component inputs."""
     phi, v_axial, v_theta, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound, radius = map(
         _real, (phi, v_axial, v_theta, radii, chord, sigma, w0, reynolds, rho, mu, mach, speed_of_sound, radius))
     cl, cd = _real(pv.cl), _real(pv.cd)
     F = _real(loss.F)
-    res = inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F)
+    res = inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F, high_induction)
 
     d_phi = {"phi": ones}
     d_vx = {"v_axial": ones}
@@ -319,7 +331,7 @@ def _section_partials(phi, v_axial, v_theta, d_vtheta, radii, chord, sigma, w0, 
     if not loads:
         return partials
 
-    ind = induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F)
+    ind = induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F, high_induction)
     d_ux = _lin((ind.du_axial_dphi, d_phi), (ind.du_axial_dv_axial, d_vx),
                 (ind.du_axial_dv_theta, d_vtheta), (ind.du_axial_dsigma, d_sigma),
                 (ind.du_axial_dcl, d_cl), (ind.du_axial_dcd, d_cd), (ind.du_axial_dF, d_F))
@@ -366,6 +378,16 @@ def declare_section_options(options, radial=True, polar=True):
         options.declare("polar", types=Polar, recordable=False, desc="airfoil polar cl, cd (alpha, Re)")
     options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
                     desc="Prandtl loss factor: tip x hub, tip only, or none")
+
+
+def declare_high_induction_option(options, by_rotor_type=False):
+    """Declare ``high_induction`` (the BEM inflow and loads components and the BEM groups; ``by_rotor_type``:
+    None allowed, the default, meaning the rotor type's, :func:`~bild_mdo.bem.inflow_residual.resolve_high_induction`)."""
+    options.declare("high_induction", default=None if by_rotor_type else "none",
+                    values=((None,) if by_rotor_type else ()) + HIGH_INDUCTION, allow_none=by_rotor_type,
+                    desc="momentum thrust above a = 0.4: 'none' (momentum theory, the station flagged) or "
+                         "'buhl' (Buhl's 2005 correction, as CCBlade and AeroDyn)"
+                         + ("; None: 'buhl' for a turbine, 'none' for a propeller" if by_rotor_type else ""))
 
 
 def add_section_inputs(comp, names=SECTION_INPUTS, **values):
@@ -426,5 +448,6 @@ def section_arguments(inputs, options):
         kw = {name: inputs[name][:, None] for name in NODE_INPUTS}
     kw.update(radii=inputs["radii"], chord=inputs["chord"], twist=inputs["twist"],
               num_blades=options["num_blades"], polar=options["polar"],
-              loss_model=options["loss_model"])
+              loss_model=options["loss_model"],
+              high_induction=options["high_induction"] if "high_induction" in options else "none")
     return kw

@@ -44,10 +44,12 @@ documented fallback, zero loading: it is exact, smooth in the inputs (its partia
 ``atan2(V_x, Omega r)`` and of the unloaded speeds), and with the search order of
 :func:`~bild_mdo.bem.root_finding.solve_physical` it is rare (no station of 20,000 random rotors
 in ``benchmarks/bem_robustness.py``).  Code 4 keeps the momentum root and is flagged.  Buhl's
-turbulent-wake correction (NREL/TP-500-36834, used by AeroDyn and CCBlade) is not applied: it
-is a fit to wind-turbine data for ``0.4 < a < 1``, its extension to ``a > 1`` (reversed
-through-flow, the case of a propeller annulus with negative pitch) is unvalidated, and it would
-change the residual only at stations that are flagged anyway.
+turbulent-wake correction (NREL/TP-500-36834, used by AeroDyn and CCBlade) is applied with the
+option ``high_induction='buhl'`` (:mod:`bild_mdo.bem.inflow_residual`): then a station with
+``0.4 < a < 1`` has Buhl's thrust and is a valid windmill or propeller brake (code 2 or 3), and only
+``a >= 1`` stays code 4.  By default (``'none'``) it is not applied: it is a fit to wind-turbine
+data for ``0.4 < a < 1``, its extension to ``a > 1`` (reversed through-flow, the case of a
+propeller annulus with negative pitch) is unvalidated, and without it such stations are flagged.
 
 Invalid stations are those with code 0, 4 or 5 (:data:`INVALID_STATES`): with
 ``on_invalid='raise'`` the analysis raises :class:`openmdao.api.AnalysisError`, with ``'warn'``
@@ -96,7 +98,7 @@ class BEMStateWarning(UserWarning):
     """Stations of a BEM analysis in a flow state the momentum model does not represent."""
 
 
-def classify(c_x, c_theta, v_axial, u_axial, admissible):
+def classify(c_x, c_theta, v_axial, u_axial, admissible, corrected=False):
     """Flow-state code per station from the signs of the loads and of the inflow.
 
     Parameters
@@ -109,6 +111,9 @@ def classify(c_x, c_theta, v_axial, u_axial, admissible):
         Axial velocity at the disk (m/s).
     admissible : ndarray of bool
         Whether the root is kinematically consistent (``W > 0``).
+    corrected : bool
+        Whether the thrust above ``a = 0.4`` is Buhl's (``high_induction='buhl'``): then a station
+        with ``0.4 < a < 1`` is a windmill or propeller brake, valid, and only ``a >= 1`` is flagged.
 
     Returns
     -------
@@ -119,7 +124,7 @@ def classify(c_x, c_theta, v_axial, u_axial, admissible):
     forward = v_axial > 0.0
     # a = 1 - u_axial / V_x > a_c  <=>  u_axial < (1 - a_c) V_x at V_x > 0: no division, so a tiny V_x
     # cannot overflow.
-    past_critical = u_axial < (1.0 - CRITICAL_INDUCTION) * v_axial
+    past_critical = u_axial <= 0.0 if corrected else u_axial < (1.0 - CRITICAL_INDUCTION) * v_axial
     thrust, torque = c_x > 0.0, c_theta > 0.0
     # Forward flight past a = 0.4, or a hover annulus pushing air upward (vortex ring).
     wake = (forward & ~thrust & past_critical) | (~forward & (c_x < 0.0) & (u_axial < 0.0))
@@ -163,8 +168,10 @@ def describe_invalid(state, r_over_r=None):
             where += f" (r/R = {np.real(r_over_r[node, station]):.3f})"
         items.append(f"{where}: {FLOW_STATE_NAMES[state[node, station]]}")
     more = f"; and {count - MAX_LISTED} more" if count > MAX_LISTED else ""
+    hint = (" or, past a = 0.4 in forward flow, high_induction='buhl' (Buhl's correction, as CCBlade)"
+            if np.any(state == TURBULENT_WAKE) else "")
     return (f"BEM analysis: {count} station(s) outside the momentum model's valid flow states "
-            f"({'; '.join(items)}{more}); their loads are not reliable (see bild_mdo.bem.flow_states)")
+            f"({'; '.join(items)}{more}); their loads are not reliable (see bild_mdo.bem.flow_states{hint})")
 
 
 def report_invalid(state, on_invalid, r_over_r=None, prefix=""):

@@ -5,9 +5,10 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.atmosphere import AtmosphereComp
-from bild_mdo.bem.blade_element import declare_section_options
+from bild_mdo.bem.blade_element import declare_high_induction_option, declare_section_options
 from bild_mdo.bem.flow_states import declare_flow_state_options
 from bild_mdo.bem.inflow import InflowComp
+from bild_mdo.bem.inflow_residual import resolve_high_induction
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS, TURBINE_OUTPUTS
 from bild_mdo.bem.performance import SEA_LEVEL_SPEED_OF_SOUND, RotorPerformanceComp
@@ -51,6 +52,9 @@ class InclinedBEMGroup(om.Group):
         C_Q, tip-speed ratio); ``twist + collective_pitch`` is CCBlade's ``theta``.
     use_atmosphere, radial_fractions, width_fractions, solve_range, on_invalid
         As in :class:`~bild_mdo.bem.bem_group.BEMAnalysisGroup`.
+    high_induction : {None, 'none', 'buhl'}
+        As in :class:`~bild_mdo.bem.bem_group.BEMAnalysisGroup`; None (default): Buhl's correction for a
+        turbine (as CCBlade), none for a propeller.
 
     Inputs
     ------
@@ -81,6 +85,7 @@ class InclinedBEMGroup(om.Group):
 
     def initialize(self):
         declare_section_options(self.options)
+        declare_high_induction_option(self.options, by_rotor_type=True)
         declare_flow_state_options(self.options)
         declare_sector_option(self.options)
         self.options.declare("rotor_type", default="propeller", values=ROTOR_TYPES,
@@ -95,7 +100,8 @@ class InclinedBEMGroup(om.Group):
         turbine = opts["rotor_type"] == "turbine"
         polar = TurbinePolar(opts["polar"]) if turbine else opts["polar"]
         section = dict(num_nodes=nn, num_radial=ns * nr, num_blades=opts["num_blades"], polar=polar,
-                       loss_model=opts["loss_model"], station_velocities=True)
+                       loss_model=opts["loss_model"], station_velocities=True,
+                       high_induction=resolve_high_induction(opts["high_induction"], opts["rotor_type"]))
         sizes = dict(num_nodes=nn, num_radial=nr)
 
         if opts["use_atmosphere"]:

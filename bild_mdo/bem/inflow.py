@@ -5,8 +5,8 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.bem.attached_branch import attached_branch, stalled_candidates
-from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_section_options,
-                                        denominator_function, evaluate_section, inflow_angle_guess,
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_high_induction_option,
+                                        declare_section_options, denominator_function, evaluate_section, inflow_angle_guess,
                                         residual_function, section_arguments, section_input_names)
 from bild_mdo.bem.flow_states import (MIRROR_ROOT, NO_SOLUTION, PROPELLER, classify,
                                       declare_flow_state_options, report_invalid)
@@ -61,7 +61,8 @@ class InflowComp(om.ImplicitComponent):
 
     Options: ``num_nodes``, ``num_radial``, ``num_blades``, ``polar`` and ``loss_model``, declared by
     :func:`~bild_mdo.bem.blade_element.declare_section_options`; ``solve_range`` ('physical' or
-    'full'), ``on_invalid`` ('warn', 'raise' or 'ignore'), ``warm_start`` (bool, default False) and
+    'full'), ``on_invalid`` ('warn', 'raise' or 'ignore'), ``high_induction`` ('none' or 'buhl': Buhl's
+    correction above ``a = 0.4``, :mod:`bild_mdo.bem.inflow_residual`), ``warm_start`` (bool, default False) and
     ``station_velocities`` (bool, default False: inputs ``v_axial_local[nn, nr]`` and
     ``v_theta_local[nn, nr]`` (m/s) instead of ``v_axial`` and ``rpm``, for inclined flow,
     :mod:`bild_mdo.bem.station_velocities`; then ``V_x >= 0`` and ``V_theta > 0`` per station).
@@ -85,6 +86,7 @@ class InflowComp(om.ImplicitComponent):
     def initialize(self):
         declare_section_options(self.options)
         declare_flow_state_options(self.options)
+        declare_high_induction_option(self.options)
         self.options.declare("warm_start", types=bool, default=False,
                              desc="start each inflow solve from the previous solve's phi (same roots as cold)")
         declare_station_velocity_option(self.options)
@@ -190,7 +192,7 @@ class InflowComp(om.ImplicitComponent):
             kernels["v_axial"], v_theta = flat("v_axial_local"), flat("v_theta_local")
             # The stall-branch test (attached_branch) reads an rpm: the one of this tangential speed.
             kernels["rpm"] = v_theta / (RPM_TO_RAD_PER_S * kernels["radii"])
-        residual = residual_function(**kernels, v_theta=v_theta)
+        residual = residual_function(**kernels, v_theta=v_theta, high_induction=self.options["high_induction"])
         guess = inflow_angle_guess(kernels["v_axial"], kernels["rpm"], kernels["radii"], kernels["chord"],
                                    kernels["twist"] + kernels["collective_pitch"], self.options["num_blades"],
                                    v_theta=v_theta)
@@ -232,10 +234,11 @@ class InflowComp(om.ImplicitComponent):
         c_x, c_theta = force_coefficients(phi, values["lift_coefficient"], values["drag_coefficient"])
         admissible = found & (values["denominator"] > 0.0)
         v_axial = self._velocities(inputs)[0]
+        corrected = self.options["high_induction"] == "buhl"
         if self.options["solve_range"] == "physical":
-            state = classify(c_x, c_theta, v_axial, values["u_axial"], admissible)
+            state = classify(c_x, c_theta, v_axial, values["u_axial"], admissible, corrected)
         else:
-            state = classify(c_x, c_theta, v_axial, values["u_axial"], found)
+            state = classify(c_x, c_theta, v_axial, values["u_axial"], found, corrected)
             state = np.where(found & ~admissible, MIRROR_ROOT, state)
         return state, state == NO_SOLUTION
 

@@ -27,6 +27,20 @@ own polar and loss model (the BEM inflow solve) or fixed coefficients (the
 BILD reference station).  Partials are *explicit*: the phi partial holds
 ``cl``, ``cd`` and ``F`` fixed.
 
+High-induction correction (``high_induction='buhl'``, CCBlade's and AeroDyn's): for ``V_x > 0``
+the momentum thrust ``C_T = 4 F a (1 - a)`` of an annulus (``a = 1 - u_axial / V_x``, ``C_T`` the
+turbine-signed thrust over ``1/2 rho V_x^2 2 pi r dr``) is replaced above ``a_c = 0.4`` by Buhl's
+(2005, NREL/TP-500-36834, Eq. 19 with F) ``C_T = 8/9 + (4 F - 40/9) a + (50/9 - 4 F) a^2``, which
+meets it with the same value and slope at ``a_c``.  The torque balance and the inflow geometry
+give, at every angle, ``u_axial = 4 F sin|sin| V_theta / D`` (derived in
+:func:`buhl_residual_term`), so the thrust balance in Buhl's form is the residual above plus
+
+    Delta R = (2/9) max(3 E - 5 sin(phi), 0)^2,   E = V_x D / (4 F V_theta sin(phi)),
+
+(``3 E > 5 sin`` is ``a > 0.4``; zero in hover, where ``E = 0``, and for ``sin(phi) <= 0``), which is
+continuously differentiable in every argument.  At a root with ``Delta R > 0`` the axial velocity
+at the disk is ``u_axial = V_x + sigma C_x V_theta / D + Delta R V_theta / D``.
+
 All functions broadcast and accept complex input (complex step); the
 returned partials are evaluated at the real parts.
 """
@@ -38,6 +52,31 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.utils.complex_step import real_part as _real
+
+#: Values of the ``high_induction`` option: the momentum thrust everywhere, or Buhl's above a = 0.4.
+HIGH_INDUCTION = ("none", "buhl")
+
+
+def resolve_high_induction(high_induction, rotor_type):
+    """``high_induction``, or where it is None the default of ``rotor_type``: Buhl's correction for a turbine
+    (as CCBlade and AeroDyn apply it), none for a propeller (whose annuli past ``a = 0.4`` are flagged)."""
+    if high_induction is None:
+        return "buhl" if rotor_type == "turbine" else "none"
+    return high_induction
+
+
+class BuhlTerm(NamedTuple):
+    """``Delta R`` of Buhl's correction (module docstring) and its explicit partials (names as
+    :class:`InflowResidual`'s)."""
+
+    value: np.ndarray
+    d_phi: np.ndarray
+    d_v_axial: np.ndarray
+    d_v_theta: np.ndarray
+    d_sigma: np.ndarray
+    d_cl: np.ndarray
+    d_cd: np.ndarray
+    d_F: np.ndarray
 
 
 class InflowResidual(NamedTuple):
@@ -120,7 +159,64 @@ def _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
     return lam * (sigma * c_theta + 4.0 * F * abs_s * c) + sigma * c_x - 4.0 * F * s * abs_s
 
 
-def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
+def _buhl_gap(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """``(g, s, E, D, on)``: ``g = 3 E - 5 sin(phi)`` where Buhl's correction acts (``on``), 0 elsewhere."""
+    s, c = np.sin(phi), np.cos(phi)
+    denominator = 4.0 * F * (sign_of_sine(phi) * s) * c + sigma * (cl * s + cd * c)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        excess = v_axial * denominator / (4.0 * F * v_theta * s)
+        gap = 3.0 * excess - 5.0 * s
+    on = (np.real(v_axial) > 0.0) & (np.real(s) > 0.0) & (np.real(F) > 0.0) & (np.real(gap) > 0.0) & np.isfinite(
+        np.real(gap))
+    return np.where(on, gap, 0.0), s, np.where(on, excess, 0.0), denominator, on
+
+
+def buhl_residual_term(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """``Delta R`` of Buhl's high-induction correction (module docstring), real or complex, without partials.
+
+    Derivation (propeller signs, ``s = sin(phi) > 0``): the torque balance with the blade element,
+    ``u_theta = W^2 sigma C_theta / (2 F u_axial)``, and the geometry ``u_axial cos = (V_theta - u_theta/2)
+    sin`` with ``W = u_axial / s`` give ``u_axial = 4 F s^2 V_theta / D``, so ``1 - a = s / E``.  The thrust
+    balance ``-sigma C_x W^2 = V_x^2 C_T(a)`` is ``sigma C_x + E^2 C_T(a) = 0``; with ``C_T = 4 F a (1 - a)``
+    that is ``R = 0`` (``E^2 4 F a s / E = lambda D a``), and Buhl's ``C_T`` exceeds it by
+    ``(2/9)(5 a - 2)^2``, i.e. ``E^2 (2/9)(5 a - 2)^2 = (2/9)(3 E - 5 s)^2``.
+    """
+    gap = _buhl_gap(phi, v_axial, v_theta, sigma, cl, cd, F)[0]
+    return (2.0 / 9.0) * gap * gap
+
+
+def buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """:class:`BuhlTerm`: ``Delta R`` and its explicit partials (at fixed ``cl, cd, F``), at the real parts."""
+    value = buhl_residual_term(phi, v_axial, v_theta, sigma, cl, cd, F)
+    phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
+    gap, s, excess, denominator, on = _buhl_gap(phi, v_axial, v_theta, sigma, cl, cd, F)
+    c = np.cos(phi)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # dDelta R = (4/9) g (3 dE - 5 ds); E = V_x D / (4 F V_theta s).
+        lead = np.where(on, (4.0 / 9.0) * gap, 0.0)
+        e_over_d = np.where(on, v_axial / (4.0 * F * v_theta * s), 0.0)
+        e_over_s = np.where(on, excess / s, 0.0)
+    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
+    d_denominator_dphi = 4.0 * F * sign_of_sine(phi) * np.cos(2.0 * phi) + sigma * c_x
+    shape = np.broadcast(value, phi).shape
+
+    def b(x):
+        return np.broadcast_to(x, shape)
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return BuhlTerm(
+            value=value,
+            d_phi=b(lead * (3.0 * (e_over_d * d_denominator_dphi - e_over_s * c) - 5.0 * c)),
+            d_v_axial=b(np.where(on, lead * 3.0 * excess / v_axial, 0.0)),
+            d_v_theta=b(np.where(on, -lead * 3.0 * excess / v_theta, 0.0)),
+            d_sigma=b(lead * 3.0 * e_over_d * c_theta),
+            d_cl=b(lead * 3.0 * e_over_d * sigma * s),
+            d_cd=b(lead * 3.0 * e_over_d * sigma * c),
+            d_F=b(np.where(on, lead * 3.0 * (e_over_d * 4.0 * (sign_of_sine(phi) * s) * c - excess / F), 0.0)),
+        )
+
+
+def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F, high_induction="none"):
     """Residual of Eq. (9) generalised by the loss factor, with explicit partials.
 
     Parameters
@@ -137,6 +233,8 @@ def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
         Section lift and drag coefficients.
     F : array_like
         Prandtl loss factor.
+    high_induction : {'none', 'buhl'}
+        Buhl's correction above ``a = 0.4`` (module docstring), or none.
 
     Returns
     -------
@@ -151,6 +249,9 @@ def inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
     # AnalysisError instead of NumPy warnings and silently infinite partials.
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         result = _inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F)
+        if high_induction == "buhl":
+            term = buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F)
+            result = InflowResidual(*(x + t for x, t in zip(result, term)))
     _require_finite(result, "inflow residual", v_axial, v_theta, sigma)
     return result
 
@@ -190,9 +291,12 @@ def _inflow_residual(phi, v_axial, v_theta, sigma, cl, cd, F):
     )
 
 
-def inflow_residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
+def inflow_residual_value(phi, v_axial, v_theta, sigma, cl, cd, F, high_induction="none"):
     """Only the residual of Eq. (9) with F (real or complex), without partials."""
-    return _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
+    value = _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F)
+    if high_induction == "buhl":
+        value = value + buhl_residual_term(phi, v_axial, v_theta, sigma, cl, cd, F)
+    return value
 
 
 def _eq8_terms(phi, sigma, cl, cd, F):
@@ -206,10 +310,11 @@ def _eq8_terms(phi, sigma, cl, cd, F):
     return s, c, c_x, c_theta, P, N, M, P + N
 
 
-def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
+def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F, high_induction="none"):
     """Induced velocities of Eq. (8) generalised by the loss factor, with explicit partials.
 
-    Parameters are those of :func:`inflow_residual`.
+    Parameters are those of :func:`inflow_residual`; with ``high_induction='buhl'`` the axial velocity
+    gains ``Delta R V_theta / D`` (module docstring).
 
     Returns
     -------
@@ -220,8 +325,39 @@ def induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):
     """
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         result = _induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F)
+        if high_induction == "buhl":
+            result = _buhl_velocity(result, phi, v_axial, v_theta, sigma, cl, cd, F)
     _require_finite(result, "induced velocities", v_axial, v_theta, sigma)
     return result
+
+
+def buhl_axial_velocity(phi, v_axial, v_theta, sigma, cl, cd, F):
+    """``Delta R V_theta / D``: what Buhl's correction adds to Eq. (8)'s ``u_axial`` (real or complex)."""
+    _, _, _, _, _, _, _, D = _eq8_terms(phi, sigma, cl, cd, F)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return buhl_residual_term(phi, v_axial, v_theta, sigma, cl, cd, F) * v_theta / D
+
+
+def _buhl_velocity(result, phi, v_axial, v_theta, sigma, cl, cd, F):
+    """``result`` with ``u_axial`` and its partials gaining ``Delta R V_theta / D``."""
+    u_axial = result.u_axial + buhl_axial_velocity(phi, v_axial, v_theta, sigma, cl, cd, F)
+    term = buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F)
+    phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
+    s, c, c_x, c_theta, _, _, _, D = _eq8_terms(phi, sigma, cl, cd, F)
+    # d(dR V / D) = (V / D) d(dR) + (dR / D) dV - (dR V / D^2) dD
+    ratio, scaled = v_theta / D, term.value * v_theta / D**2
+    d_D = {"phi": 4.0 * F * sign_of_sine(phi) * np.cos(2.0 * phi) + sigma * c_x, "sigma": c_theta,
+           "cl": sigma * s, "cd": sigma * c, "F": 4.0 * (sign_of_sine(phi) * s) * c}
+    return result._replace(
+        u_axial=u_axial,
+        du_axial_dphi=result.du_axial_dphi + ratio * term.d_phi - scaled * d_D["phi"],
+        du_axial_dv_axial=result.du_axial_dv_axial + ratio * term.d_v_axial,
+        du_axial_dv_theta=result.du_axial_dv_theta + ratio * term.d_v_theta + term.value / D,
+        du_axial_dsigma=result.du_axial_dsigma + ratio * term.d_sigma - scaled * d_D["sigma"],
+        du_axial_dcl=result.du_axial_dcl + ratio * term.d_cl - scaled * d_D["cl"],
+        du_axial_dcd=result.du_axial_dcd + ratio * term.d_cd - scaled * d_D["cd"],
+        du_axial_dF=result.du_axial_dF + ratio * term.d_F - scaled * d_D["F"],
+    )
 
 
 def _induced_velocities(phi, v_axial, v_theta, sigma, cl, cd, F):

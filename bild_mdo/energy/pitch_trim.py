@@ -16,6 +16,7 @@ import openmdao.api as om
 from bild_mdo.bem.analyze import station_radii
 from bild_mdo.bem.flow_states import ON_INVALID
 from bild_mdo.bem.inclined_bem_group import InclinedBEMGroup
+from bild_mdo.bem.inflow_residual import HIGH_INDUCTION
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bem.metrics import TURBINE_OUTPUTS
 from bild_mdo.constants import RPM_TO_RAD_PER_S
@@ -122,11 +123,13 @@ class ExplainedNewton(om.NewtonSolver):
 
 def declare_turbine_bem_options(options):
     """The options of a turbine BEM inside the power curve: ``num_blades``, ``polar`` (the airfoil's own),
-    ``loss_model``, ``on_invalid``."""
+    ``loss_model``, ``on_invalid``, ``high_induction`` (Buhl's correction by default, as CCBlade)."""
     options.declare("num_blades", types=int, default=3, desc="number of blades B")
     options.declare("polar", recordable=False, desc="the airfoil's own Polar (turbine convention)")
     options.declare("loss_model", default="tip_hub", values=LOSS_MODELS, desc="Prandtl losses")
     options.declare("on_invalid", default="warn", values=ON_INVALID, desc="BEM stations in an invalid flow state")
+    options.declare("high_induction", default="buhl", values=HIGH_INDUCTION,
+                    desc="thrust past a = 0.4: 'buhl' (Buhl 2005, as CCBlade) or 'none' (momentum theory, flagged)")
 
 
 class PitchTrimGroup(om.Group):
@@ -170,7 +173,7 @@ class PitchTrimGroup(om.Group):
         self.add_subsystem("bem", InclinedBEMGroup(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
                                                    polar=opts["polar"], loss_model=opts["loss_model"],
                                                    on_invalid=opts["on_invalid"], rotor_type="turbine",
-                                                   use_atmosphere=False),
+                                                   high_induction=opts["high_induction"], use_atmosphere=False),
                            promotes_inputs=list(BEM_INPUTS) + ["collective_pitch"],
                            promotes_outputs=list(TURBINE_OUTPUTS))
         balance = self.add_subsystem("trim", om.BalanceComp(), promotes_inputs=["power", "rated_power"],

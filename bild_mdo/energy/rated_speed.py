@@ -69,7 +69,7 @@ class RatedSpeedGroup(om.Group):
         self.add_subsystem("bem", InclinedBEMGroup(num_nodes=nn, num_radial=nr, num_blades=opts["num_blades"],
                                                    polar=opts["polar"], loss_model=opts["loss_model"],
                                                    on_invalid=opts["on_invalid"], rotor_type="turbine",
-                                                   use_atmosphere=False),
+                                                   high_induction=opts["high_induction"], use_atmosphere=False),
                            promotes_inputs=[name for name in BEM_INPUTS if name not in ("v_axial", "rpm")],
                            promotes_outputs=[name for name in TURBINE_OUTPUTS if name != "tip_speed_ratio"])
         self.add_subsystem("rated", RatedWindSpeedComp(num_nodes=nn), promotes_inputs=["power", "rated_power"],

@@ -21,6 +21,7 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE, isa
+from bild_mdo.bem.inflow_residual import HIGH_INDUCTION
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.energy.power_curve_group import PowerCurveGroup
 from bild_mdo.energy.wind_speeds import MIN_WIND_SPEEDS, TIP_SPEED_LIMIT_WIND_SPEED
@@ -135,7 +136,7 @@ def _scalars(radius, hub_radius, tip_speed_ratio, rated_power, max_tip_speed, we
 
 def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, num_blades=3, airfoil="naca4412",
                 loss_model="tip_hub", max_tip_speed=None, weibull_scale=8.0, weibull_shape=2.0, cut_in_speed=3.0,
-                cut_out_speed=25.0, altitude=0.0, fluid=None, num_wind_speeds=13):
+                cut_out_speed=25.0, altitude=0.0, fluid=None, num_wind_speeds=13, high_induction="buhl"):
     """The power curve and annual energy of turbine blade(s) (:class:`~bild_mdo.energy.PowerCurveGroup`).
 
     Parameters
@@ -164,6 +165,8 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
         ISA altitude (m); or ``fluid`` (:mod:`bild_mdo.fluid`), then altitude stays 0.
     num_wind_speeds : int
         Points of the curve (at least 5; Gauss-Lobatto nodes, :mod:`bild_mdo.energy.wind_speeds`).
+    high_induction : {'buhl', 'none'}
+        The thrust of annuli past ``a = 0.4``: Buhl's (default, as CCBlade) or momentum theory's.
 
     Returns
     -------
@@ -180,6 +183,7 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
     num_blades = validation.integer("num_blades", num_blades)
     num_wind_speeds = validation.integer("num_wind_speeds", num_wind_speeds, minimum=MIN_WIND_SPEEDS)
     validation.choice("loss_model", loss_model, LOSS_MODELS)
+    validation.choice("high_induction", high_induction, HIGH_INDUCTION)
     chord = validation.positive("chord", chord, units="m", ndim=(1, 2))
     twist = validation.real_array("twist", twist, units="rad", ndim=(1, 2))
     if chord.shape[-1] != twist.shape[-1]:
@@ -208,7 +212,8 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
     prob.model.add_subsystem("curve", PowerCurveGroup(num_nodes=nn, num_radial=nr, num_wind_speeds=num_wind_speeds,
                                                       num_blades=num_blades, polar=polar, loss_model=loss_model,
                                                       on_invalid="warn", use_atmosphere=False,
-                                                      tip_speed_limit=limited), promotes=["*"])
+                                                      tip_speed_limit=limited, high_induction=high_induction),
+                             promotes=["*"])
     prob.setup()
     prob.set_val("chord", np.broadcast_to(chord, (nn, nr)), units="m")
     prob.set_val("twist", np.broadcast_to(twist, (nn, nr)), units="rad")

@@ -107,10 +107,11 @@ def test_split_rule_integrates_the_cubic_curve_as_annual_energy_comp():
     assert prob.get_val("annual_energy")[0] == pytest.approx(reference.get_val("annual_energy")[0], rel=1e-12)
 
 
-def _curve(limited, max_tip_speed=None, nw=21, mode="auto"):
+def _curve(limited, max_tip_speed=None, nw=21, mode="auto", high_induction="buhl"):
     prob = om.Problem(reports=False)
     prob.model.add_subsystem("curve", PowerCurveGroup(num_nodes=2, num_radial=NR, num_wind_speeds=nw, polar=POLAR,
-                                                      on_invalid="ignore", tip_speed_limit=limited), promotes=["*"])
+                                                      on_invalid="ignore", tip_speed_limit=limited,
+                                                      high_induction=high_induction), promotes=["*"])
     prob.setup(force_alloc_complex=True, mode=mode)
     for name, value in _values().items():
         prob.set_val(name, np.asarray(value))
@@ -125,9 +126,9 @@ def _curve(limited, max_tip_speed=None, nw=21, mode="auto"):
 LIMIT = np.array([60.0, 65.0])
 
 
-@pytest.fixture(scope="module")
-def limited():
-    return _curve(True, LIMIT)
+@pytest.fixture(scope="module", params=["none", "buhl"])
+def limited(request):
+    return _curve(True, LIMIT, high_induction=request.param)
 
 
 def test_region_two_and_a_half_turns_at_the_limit(limited):
@@ -146,7 +147,7 @@ def test_region_two_and_a_half_turns_at_the_limit(limited):
         points = (v[i] >= knee[i]) & (np.arange(v.shape[1]) < n2)
         res = analyze_rotor(values["chord"][i], values["twist"][i], RADIUS[i], values["hub_radius"][i], rpm[i, points],
                             v[i, points], 3, POLAR, altitude=values["altitude"][i], rotor_type="turbine",
-                            on_invalid="ignore")
+                            on_invalid="ignore", high_induction=limited.model.curve.options["high_induction"])
         np.testing.assert_allclose(res.power, limited.get_val("power")[i, points], rtol=1e-9)
     assert np.all(v_r > knee)
 
@@ -156,6 +157,7 @@ def test_aep_with_the_limit_against_a_dense_integration(limited):
     # [V_k, V_r] with the rotor speed of the limit law, integrated against the Weibull density by Simpson's rule,
     # plus rated power's exact integral over [V_r, V_out].
     values = _values()
+    high_induction = limited.model.curve.options["high_induction"]
     for i in range(2):
         c, k = values["weibull_scale"][i], values["weibull_shape"][i]
         v_in, v_out = values["cut_in_speed"][i], values["cut_out_speed"][i]
@@ -165,13 +167,17 @@ def test_aep_with_the_limit_against_a_dense_integration(limited):
             v = np.linspace(lo, hi, 401)
             rpm = np.minimum(TSR[i] * v, LIMIT[i]) / RADIUS[i] * 30.0 / np.pi
             res = analyze_rotor(values["chord"][i], values["twist"][i], RADIUS[i], values["hub_radius"][i], rpm, v, 3,
-                                POLAR, altitude=values["altitude"][i], rotor_type="turbine", on_invalid="ignore")
+                                POLAR, altitude=values["altitude"][i], rotor_type="turbine", on_invalid="ignore",
+                                high_induction=high_induction)
             energy += simpson(np.asarray(res.power) * weibull_density(v, c, k)[0], x=v)
         survival = weibull_survival(np.array([v_r, v_out]), c, k)[0]
         energy += values["rated_power"][i] * (survival[0] - survival[1])
         expected = energy * HOURS_PER_YEAR * 3600.0
-        # Measured: 2.2e-9 and 4e-13 (Simpson's error on 401 points).
-        assert limited.get_val("annual_energy")[i] == pytest.approx(expected, rel=2e-8)
+        # Measured: 2.2e-9 and 4e-13 with momentum theory's thrust (Simpson's error on 401 points); with Buhl's,
+        # continuously differentiable but not twice where an annulus crosses a = 0.4 in region 2.5, the
+        # 21-point Lobatto rule's own error shows: 3.5e-7 and -6.2e-8 (PowerCurveGroup's docstring).
+        tolerance = 2e-8 if high_induction == "none" else 1e-6
+        assert limited.get_val("annual_energy")[i] == pytest.approx(expected, rel=tolerance)
 
 
 @pytest.mark.parametrize("nw", [5, 9])
