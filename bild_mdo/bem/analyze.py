@@ -170,7 +170,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     on_invalid : {'warn', 'raise', 'ignore'}
         Stations in a flow state the momentum model does not represent: no momentum solution
         (zero loading returned), turbulent wake / vortex ring (``V_x > 0``, ``dT < 0``, axial
-        induction ``a > 0.4``) or, with ``solve_range='full'``, a mirror root (``W < 0``); see
+        induction ``a > 0.4``, or ``a > 0.95`` with ``high_induction='buhl'``) or, with ``solve_range='full'``, a mirror root (``W < 0``); see
         :mod:`bild_mdo.bem.flow_states`.  'warn' (default): one
         :class:`~bild_mdo.bem.flow_states.BEMStateWarning` naming them (node, station, r/R, state;
         the first few and the count); 'raise': :class:`openmdao.api.AnalysisError` naming them;

@@ -9,6 +9,7 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.bem.blade_element import evaluate_section
+from bild_mdo.bem.inflow_residual import resolve_high_induction
 from bild_mdo.bem.inclined_bem_group import ROTOR_TYPES, InclinedBEMGroup
 from bild_mdo.bem.loads import SECTION_OUTPUTS
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS, TURBINE_OUTPUTS, warn_supersonic_tip
@@ -152,7 +153,8 @@ def run_inclined(prob_values, group_kw, nn, nr, single, rotor_type, num_sectors,
                                  chord=np.tile(prob_values["chord"], (1, num_sectors)),
                                  twist=np.tile(prob_values["twist"], (1, num_sectors)),
                                  num_blades=group_kw["num_blades"], polar=polar, loss_model=group_kw["loss_model"],
-                                 high_induction=group_kw.get("high_induction", "none"), loads=False, partials=False,
+                                 high_induction=resolve_high_induction(group_kw.get("high_induction"), rotor_type),
+                                 loads=False, partials=False,
                                  **node)
     fields["residual"] = values["residual"]
     fields["flow_state"] = np.rint(fields["flow_state"]).astype(int)

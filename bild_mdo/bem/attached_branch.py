@@ -21,16 +21,33 @@ is taken.  Below ``alpha*`` the lift curve rises with ``alpha`` over
 scanned.  The attached branch is then followed up to the far fold of the S-curve,
 where it ends and the solution must jump to the stalled branch: no root choice
 that is a function of the inputs alone avoids a jump where a branch ends.
+
+With Buhl's high-induction correction (``high_induction='buhl'``,
+:mod:`bild_mdo.bem.inflow_residual`) the residual grows without bound as ``phi -> 0+``
+in forward flow, and a heavily loaded annulus can have up to three roots in region 1
+(about 0.15 % of random turbine stations): the same rule picks among them.  At a
+region-1 root where the correction acts (``a > 0.4``, :func:`high_induction_candidates`) the
+residual and its slope are sampled on ``(phi, pi/2]`` at :data:`HIGH_INDUCTION_SCAN_POINTS`
+angles, and the admissible root at the largest ``phi``, the least induced, is taken
+(:func:`least_induced_root`): in the last interval with a sign change, or where two roots hide
+between two negative samples (the slope rising at the left one and falling at the right), above
+the peak the slopes locate.  So cold and warm solves agree, and a root below ``a = 0.4``,
+momentum theory's, is kept where it exists.  Limitation: a pair of roots closer together than the
+samples resolve, with its peak missed too, is not seen (as for stall, the pair is then just born).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from bild_mdo.bem.blade_element import _station_setup
-from bild_mdo.bem.root_finding import _scan_admissible
+from bild_mdo.bem.inflow_residual import buhl_residual_term
+from bild_mdo.bem.prandtl import prandtl_loss
+from bild_mdo.bem.root_finding import _check_finite, _scan_admissible, _solve_in, opposite_signs
 
 #: Scan points between the stalled root and the upper end (the roots of an S-curve are degrees apart).
 SCAN_POINTS = 24
+#: Scan points between a root past a = 0.4 and pi/2 (the roots Buhl's correction adds lie 0.02-0.1 rad apart).
+HIGH_INDUCTION_SCAN_POINTS = 64
 #: First scan point above the root, as a fraction of the scan step (so the root itself is not counted).
 _OFFSET = 1.0e-3
 
@@ -100,3 +117,81 @@ def stalled_candidates(phi, found, kernels):
     # Past the maximum of cl/cd (d(cl/cd)/dalpha < 0, i.e. alpha > alpha*) or past the lift peak.
     above = (v.dcl_dalpha * v.cd - v.cl * v.dcd_dalpha < 0.0) | (v.dcl_dalpha <= 0.0)
     return idx[above], np.minimum(0.5 * np.pi, pitch[idx[above]])
+
+
+def high_induction_candidates(phi, found, kernels, high_induction):
+    """Flat stations whose region-1 root lies past ``a = 0.4`` with Buhl's correction (:func:`least_induced_root`).
+
+    Parameters
+    ----------
+    phi, found, kernels
+        As in :func:`stalled_candidates` (``kernels`` also with ``hub_radius`` and ``loss_model``).
+    high_induction : {'none', 'buhl'}
+        No station is a candidate with 'none'.
+
+    Returns
+    -------
+    ndarray of int
+    """
+    idx = np.flatnonzero(found & (phi > 0.0) & (phi < 0.5 * np.pi) & (kernels["v_axial"] > 0.0))
+    if high_induction != "buhl" or idx.size == 0:
+        return idx[:0]
+    polar = kernels["polar"]
+    v_theta, sigma, reynolds, pitch, mach, fraction = _station_setup(
+        *(kernels[name][idx] for name in ("v_axial", "rpm", "radii", "chord", "twist", "rho", "mu", "radius")),
+        kernels["num_blades"], polar, kernels["speed_of_sound"][idx], kernels["collective_pitch"][idx])
+    v = polar.evaluate(pitch - phi[idx], reynolds, mach=mach, radial_fraction=fraction)
+    loss = prandtl_loss(phi[idx], kernels["radii"][idx], kernels["radius"][idx], kernels["hub_radius"][idx],
+                        kernels["num_blades"], kernels["loss_model"])
+    active = buhl_residual_term(phi[idx], kernels["v_axial"][idx], v_theta, sigma, v.cl, v.cd, loss.F) > 0.0
+    return idx[active]
+
+
+def least_induced_root(residual, admissible, phi, candidates, describe, tol, max_iter,
+                       points=HIGH_INDUCTION_SCAN_POINTS):
+    """Replace roots at ``candidates`` by the admissible root at the largest ``phi`` in ``(phi, pi/2]`` (module
+    docstring: sign changes of the samples, and root pairs hidden between two negative samples).
+
+    Arguments as :func:`attached_branch`'s (``phi`` modified in place).
+    """
+    lower = phi[candidates]
+    n = candidates.size
+    fractions = np.concatenate([[_OFFSET], np.arange(1, points + 1)]) / points
+    grid = lower[:, None] + (0.5 * np.pi - lower)[:, None] * fractions
+    stations = np.repeat(candidates, grid.shape[1])
+    value, slope = (x.reshape(grid.shape) for x in residual(grid.ravel(), stations))
+    _check_finite(value.ravel(), stations, grid.ravel(), describe)
+    ok = admissible(grid.ravel(), stations).reshape(grid.shape)
+    change = opposite_signs(value[:, :-1], value[:, 1:]) & ok[:, :-1] & ok[:, 1:]
+    # Two roots between negative samples: the peak where the slope's linear interpolant vanishes.
+    hidden = (value[:, :-1] < 0.0) & (value[:, 1:] < 0.0) & (slope[:, :-1] > 0.0) & (slope[:, 1:] < 0.0)
+    rows, cols = np.nonzero(hidden)
+    left = grid[rows, cols].copy()
+    if rows.size:
+        width = grid[rows, cols + 1] - grid[rows, cols]
+        peak = grid[rows, cols] + width * slope[rows, cols] / (slope[rows, cols] - slope[rows, cols + 1])
+        top = residual(peak, candidates[rows])[0]
+        above = (top > 0.0) & admissible(peak, candidates[rows]) & ok[rows, cols + 1]
+        change[rows[above], cols[above]] = True
+        left[above] = peak[above]
+        value_left = value.copy()
+        value_left[rows[above], cols[above]] = top[above]
+    else:
+        value_left = value
+    has = change.any(axis=1)
+    if not np.any(has):
+        return
+    at = np.flatnonzero(has)
+    last = change.shape[1] - 1 - np.argmax(change[:, ::-1], axis=1)[has]
+    lo = grid[at, last]
+    if rows.size:  # a refined interval begins at its peak
+        refined = np.zeros(change.shape, dtype=bool)
+        refined[rows, cols] = True
+        start = np.full(change.shape, np.nan)
+        start[rows, cols] = left
+        lo = np.where(refined[at, last], start[at, last], lo)
+    sel = candidates[at]
+    roots = _solve_in(residual, sel, lo, grid[at, last + 1], value_left[at, last], value[at, last + 1], None,
+                      describe, tol, max_iter)
+    good = admissible(roots, sel) & (roots >= phi[sel])
+    phi[sel[good]] = roots[good]

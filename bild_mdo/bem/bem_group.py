@@ -7,8 +7,8 @@ import openmdao.api as om
 from bild_mdo.acoustics.noise_options import NOISE_OUTPUTS, declare_noise_options
 from bild_mdo.acoustics.rotor_noise_group import make_noise_group
 from bild_mdo.atmosphere import AtmosphereComp
-from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_high_induction_option, declare_section_options
-from bild_mdo.bem.flow_states import declare_flow_state_options
+from bild_mdo.bem.blade_element import SECTION_INPUTS, declare_section_options
+from bild_mdo.bem.flow_states import declare_flow_state_options, declare_high_induction_option
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS

@@ -46,8 +46,8 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo.airfoil.polar import Polar
-from bild_mdo.bem.inflow_residual import (HIGH_INDUCTION, buhl_axial_velocity, buhl_term, force_coefficients,
-                                          induced_velocities, inflow_residual, inflow_residual_value, sign_of_sine)
+from bild_mdo.bem.inflow_residual import (buhl_axial_velocity, buhl_term, force_coefficients, induced_velocities,
+                                          inflow_residual, inflow_residual_value, sign_of_sine)
 from bild_mdo.bem.prandtl import LOSS_MODELS, loss_inputs, loss_partials, prandtl_loss, prandtl_loss_and_dphi
 from bild_mdo.bem.station_velocities import STATION_VELOCITIES, station_mode
 from bild_mdo.constants import RPM_TO_RAD_PER_S
@@ -379,15 +379,6 @@ def declare_section_options(options, radial=True, polar=True):
     options.declare("loss_model", default="tip_hub", values=LOSS_MODELS,
                     desc="Prandtl loss factor: tip x hub, tip only, or none")
 
-
-def declare_high_induction_option(options, by_rotor_type=False):
-    """Declare ``high_induction`` (the BEM inflow and loads components and the BEM groups; ``by_rotor_type``:
-    None allowed, the default, meaning the rotor type's, :func:`~bild_mdo.bem.inflow_residual.resolve_high_induction`)."""
-    options.declare("high_induction", default=None if by_rotor_type else "none",
-                    values=((None,) if by_rotor_type else ()) + HIGH_INDUCTION, allow_none=by_rotor_type,
-                    desc="momentum thrust above a = 0.4: 'none' (momentum theory, the station flagged) or "
-                         "'buhl' (Buhl's 2005 correction, as CCBlade and AeroDyn)"
-                         + ("; None: 'buhl' for a turbine, 'none' for a propeller" if by_rotor_type else ""))
 
 
 def add_section_inputs(comp, names=SECTION_INPUTS, **values):

@@ -17,9 +17,11 @@ wind-turbine axial induction, ``W > 0`` the inflow speed).
                           ``u_axial = V_x``, ``u_theta = 0``, ``phi = atan2(V_x, Omega r)``.
  1  PROPELLER             ``dT > 0`` and ``dQ > 0``: the normal working state.
  2  PROPELLER_BRAKE       ``V_x > 0``, ``dT <= 0``, ``dQ > 0`` (power absorbed, thrust reversed)
-                          with ``a <= 0.4``: momentum valid.
- 3  WINDMILL              ``V_x > 0``, ``dT <= 0``, ``dQ <= 0``, ``a <= 0.4``: power extracted.
- 4  TURBULENT_WAKE        ``V_x > 0``, ``dT < 0`` and ``a > 0.4``: the turbulent-wake state
+                          with ``a <= 0.4`` (``a <= 0.95`` with Buhl's correction): valid.
+ 3  WINDMILL              ``V_x > 0``, ``dT <= 0``, ``dQ <= 0``, ``a <= 0.4`` (``a <= 0.95`` with
+                          Buhl's correction): power extracted.
+ 4  TURBULENT_WAKE        ``V_x > 0``, ``dT < 0`` and ``a > 0.4`` (``a > 0.95`` with Buhl's correction,
+                          :data:`BUHL_MAX_INDUCTION`): the turbulent-wake state
                           (``0.4 < a < 1``) and, for ``a >= 1`` (flow reversed through the disk
                           against the freestream), the vortex-ring / windmill-brake state; and in
                           hover (``V_x = 0``) an annulus with ``dT < 0`` (see below).
@@ -46,8 +48,8 @@ documented fallback, zero loading: it is exact, smooth in the inputs (its partia
 in ``benchmarks/bem_robustness.py``).  Code 4 keeps the momentum root and is flagged.  Buhl's
 turbulent-wake correction (NREL/TP-500-36834, used by AeroDyn and CCBlade) is applied with the
 option ``high_induction='buhl'`` (:mod:`bild_mdo.bem.inflow_residual`): then a station with
-``0.4 < a < 1`` has Buhl's thrust and is a valid windmill or propeller brake (code 2 or 3), and only
-``a >= 1`` stays code 4.  By default (``'none'``) it is not applied: it is a fit to wind-turbine
+``0.4 < a <= 0.95`` has Buhl's thrust and is a valid windmill or propeller brake (code 2 or 3), and
+only a larger ``a``, the degenerate end of his relation (:data:`BUHL_MAX_INDUCTION`), stays code 4.  By default (``'none'``) it is not applied: it is a fit to wind-turbine
 data for ``0.4 < a < 1``, its extension to ``a > 1`` (reversed through-flow, the case of a
 propeller annulus with negative pitch) is unvalidated, and without it such stations are flagged.
 
@@ -61,6 +63,8 @@ import warnings
 
 import numpy as np
 import openmdao.api as om
+
+from bild_mdo.bem.inflow_residual import HIGH_INDUCTION
 
 NO_SOLUTION = 0
 PROPELLER = 1
@@ -81,6 +85,11 @@ ON_INVALID = ("warn", "raise", "ignore")
 SOLVE_RANGES = ("physical", "full")
 #: Axial induction above which momentum theory fails for V_x > 0 (Glauert; Buhl 2005: a_c = 0.4).
 CRITICAL_INDUCTION = 0.4
+#: Axial induction above which a root with Buhl's correction is flagged: his thrust reaches C_T = 2 at a = 1,
+#: where the speed through the disk and the inflow speed W vanish; a root past a = 0.95 (the disk speed below 5 %
+#: of the freestream) lies at that degenerate end (in forward flow it appears where the induction grows without
+#: another root, e.g. a propeller near hover or a turbine far beyond its design tip-speed ratio).
+BUHL_MAX_INDUCTION = 0.95
 #: Stations named in a warning or error message (the count says how many in all).
 MAX_LISTED = 5
 
@@ -92,6 +101,18 @@ def declare_flow_state_options(options):
                          "'full': first sign change in [-pi/2, pi), mirror roots kept and flagged")
     options.declare("on_invalid", default="warn", values=ON_INVALID,
                     desc="stations in an invalid flow state: one BEMStateWarning, om.AnalysisError, or nothing")
+
+
+def declare_high_induction_option(options, by_rotor_type=False):
+    """Declare ``high_induction`` (the BEM inflow and loads components and the BEM groups).
+
+    With ``by_rotor_type`` None is allowed and the default: the rotor type's
+    (:func:`~bild_mdo.bem.inflow_residual.resolve_high_induction`)."""
+    options.declare("high_induction", default=None if by_rotor_type else "none",
+                    values=((None,) if by_rotor_type else ()) + HIGH_INDUCTION, allow_none=by_rotor_type,
+                    desc="momentum thrust above a = 0.4: 'none' (momentum theory, the station flagged) or "
+                         "'buhl' (Buhl's 2005 correction, as CCBlade and AeroDyn)"
+                         + ("; None: 'buhl' for a turbine, 'none' for a propeller" if by_rotor_type else ""))
 
 
 class BEMStateWarning(UserWarning):
@@ -113,7 +134,8 @@ def classify(c_x, c_theta, v_axial, u_axial, admissible, corrected=False):
         Whether the root is kinematically consistent (``W > 0``).
     corrected : bool
         Whether the thrust above ``a = 0.4`` is Buhl's (``high_induction='buhl'``): then a station
-        with ``0.4 < a < 1`` is a windmill or propeller brake, valid, and only ``a >= 1`` is flagged.
+        with ``0.4 < a <=`` :data:`BUHL_MAX_INDUCTION` is a windmill or propeller brake, valid, and
+        only a larger ``a`` is flagged.
 
     Returns
     -------
@@ -124,7 +146,7 @@ def classify(c_x, c_theta, v_axial, u_axial, admissible, corrected=False):
     forward = v_axial > 0.0
     # a = 1 - u_axial / V_x > a_c  <=>  u_axial < (1 - a_c) V_x at V_x > 0: no division, so a tiny V_x
     # cannot overflow.
-    past_critical = u_axial <= 0.0 if corrected else u_axial < (1.0 - CRITICAL_INDUCTION) * v_axial
+    past_critical = u_axial < (1.0 - (BUHL_MAX_INDUCTION if corrected else CRITICAL_INDUCTION)) * v_axial
     thrust, torque = c_x > 0.0, c_theta > 0.0
     # Forward flight past a = 0.4, or a hover annulus pushing air upward (vortex ring).
     wake = (forward & ~thrust & past_critical) | (~forward & (c_x < 0.0) & (u_axial < 0.0))
@@ -140,7 +162,7 @@ def classify(c_x, c_theta, v_axial, u_axial, admissible, corrected=False):
     return state
 
 
-def describe_invalid(state, r_over_r=None):
+def describe_invalid(state, r_over_r=None, suggest_buhl=True):
     """One line naming the invalid stations (node, station, r/R, state): the first few and the count.
 
     Parameters
@@ -149,6 +171,8 @@ def describe_invalid(state, r_over_r=None):
         Codes, shape ``(nn, nr)``.
     r_over_r : ndarray, optional
         Station radii as fractions of the tip radius, shape ``(nn, nr)``.
+    suggest_buhl : bool
+        Whether the line suggests ``high_induction='buhl'`` for turbulent-wake stations (False where it is on).
 
     Returns
     -------
@@ -169,12 +193,12 @@ def describe_invalid(state, r_over_r=None):
         items.append(f"{where}: {FLOW_STATE_NAMES[state[node, station]]}")
     more = f"; and {count - MAX_LISTED} more" if count > MAX_LISTED else ""
     hint = (" or, past a = 0.4 in forward flow, high_induction='buhl' (Buhl's correction, as CCBlade)"
-            if np.any(state == TURBULENT_WAKE) else "")
+            if suggest_buhl and np.any(state == TURBULENT_WAKE) else "")
     return (f"BEM analysis: {count} station(s) outside the momentum model's valid flow states "
             f"({'; '.join(items)}{more}); their loads are not reliable (see bild_mdo.bem.flow_states{hint})")
 
 
-def report_invalid(state, on_invalid, r_over_r=None, prefix=""):
+def report_invalid(state, on_invalid, r_over_r=None, prefix="", suggest_buhl=True):
     """Raise, warn once or do nothing about the invalid stations, as ``on_invalid`` says.
 
     Raises
@@ -184,7 +208,7 @@ def report_invalid(state, on_invalid, r_over_r=None, prefix=""):
     """
     if on_invalid == "ignore":
         return
-    message = describe_invalid(state, r_over_r)
+    message = describe_invalid(state, r_over_r, suggest_buhl)
     if message is None:
         return
     if on_invalid == "raise":

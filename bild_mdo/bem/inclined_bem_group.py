@@ -5,8 +5,8 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.atmosphere import AtmosphereComp
-from bild_mdo.bem.blade_element import declare_high_induction_option, declare_section_options
-from bild_mdo.bem.flow_states import declare_flow_state_options
+from bild_mdo.bem.blade_element import declare_section_options
+from bild_mdo.bem.flow_states import declare_flow_state_options, declare_high_induction_option
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.inflow_residual import resolve_high_induction
 from bild_mdo.bem.loads import SECTION_OUTPUTS, BladeElementLoadsComp

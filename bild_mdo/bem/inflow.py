@@ -4,12 +4,13 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bem.attached_branch import attached_branch, stalled_candidates
-from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_high_induction_option,
-                                        declare_section_options, denominator_function, evaluate_section, inflow_angle_guess,
+from bild_mdo.bem.attached_branch import (attached_branch, high_induction_candidates, least_induced_root,
+                                          stalled_candidates)
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_section_options,
+                                        denominator_function, evaluate_section, inflow_angle_guess,
                                         residual_function, section_arguments, section_input_names)
-from bild_mdo.bem.flow_states import (MIRROR_ROOT, NO_SOLUTION, PROPELLER, classify,
-                                      declare_flow_state_options, report_invalid)
+from bild_mdo.bem.flow_states import (MIRROR_ROOT, NO_SOLUTION, PROPELLER, classify, declare_flow_state_options,
+                                      declare_high_induction_option, report_invalid)
 from bild_mdo.bem.inflow_residual import force_coefficients
 from bild_mdo.bem.root_finding import MAX_ITER, RESIDUAL_TOL, solve_bracketed, solve_physical
 from bild_mdo.bem.station_velocities import declare_station_velocity_option, kernel_key, station_mode
@@ -33,8 +34,8 @@ class InflowComp(om.ImplicitComponent):
     roots with ``W > 0``; with ``'full'`` :func:`~bild_mdo.bem.root_finding.solve_bracketed`,
     the first sign change anywhere in ``[-pi/2, pi)`` (a root with ``W < 0`` is kept and flagged
     :data:`~bild_mdo.bem.flow_states.MIRROR_ROOT`).  Where region 1 holds several roots (stall
-    hysteresis), the attached-flow root, at the largest ``phi``, is taken
-    (:mod:`~bild_mdo.bem.attached_branch`).  Each station is then classified
+    hysteresis, or Buhl's correction past ``a = 0.4``), the attached-flow, least induced root, at the
+    largest ``phi``, is taken (:mod:`~bild_mdo.bem.attached_branch`).  Each station is then classified
     (:func:`~bild_mdo.bem.flow_states.classify`).  Where it has no momentum solution
     (:data:`~bild_mdo.bem.flow_states.NO_SOLUTION`) the state equation becomes
     ``phi = atan2(V_x, Omega r)`` (CCBlade's zero-loading fallback; the loads component then
@@ -210,6 +211,9 @@ class InflowComp(om.ImplicitComponent):
         candidates, upper = stalled_candidates(phi, found, kernels)
         if candidates.size:
             attached_branch(residual, admissible, phi, candidates, upper, describe, RESIDUAL_TOL, MAX_ITER)
+        candidates = high_induction_candidates(phi, found, kernels, self.options["high_induction"])
+        if candidates.size:  # the least induced of the roots Buhl's correction allows (attached_branch)
+            least_induced_root(residual, admissible, phi, candidates, describe, RESIDUAL_TOL, MAX_ITER)
         phi, found = phi.reshape(shape), found.reshape(shape)
         real_inputs = {name: np.real(inputs[name]) for name in inputs}
         fallback = np.real(self._fallback_angle(real_inputs)[0])
@@ -217,7 +221,8 @@ class InflowComp(om.ImplicitComponent):
         self._state, self._unloaded = self._classify(phi, found, real_inputs)
         phi = np.where(self._unloaded, fallback, phi)
         report_invalid(self._state, self.options["on_invalid"],
-                       r_over_r=real_inputs["radii"] / real_inputs["radius"][:, None])
+                       r_over_r=real_inputs["radii"] / real_inputs["radius"][:, None],
+                       suggest_buhl=self.options["high_induction"] == "none")
         self._previous_phi = phi.ravel().copy()
         if np.iscomplexobj(outputs["phi"]):
             kw = section_arguments(inputs, self.options)

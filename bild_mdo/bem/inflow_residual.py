@@ -344,15 +344,16 @@ def _buhl_velocity(result, phi, v_axial, v_theta, sigma, cl, cd, F):
     term = buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F)
     phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
     s, c, c_x, c_theta, _, _, _, D = _eq8_terms(phi, sigma, cl, cd, F)
-    # d(dR V / D) = (V / D) d(dR) + (dR / D) dV - (dR V / D^2) dD
-    ratio, scaled = v_theta / D, term.value * v_theta / D**2
+    # d(dR V / D) = (V / D) d(dR) + (dR / D) dV - (dR V / D^2) dD, at the real parts
+    value = _real(term.value)
+    ratio, scaled = v_theta / D, value * v_theta / D**2
     d_D = {"phi": 4.0 * F * sign_of_sine(phi) * np.cos(2.0 * phi) + sigma * c_x, "sigma": c_theta,
            "cl": sigma * s, "cd": sigma * c, "F": 4.0 * (sign_of_sine(phi) * s) * c}
     return result._replace(
         u_axial=u_axial,
         du_axial_dphi=result.du_axial_dphi + ratio * term.d_phi - scaled * d_D["phi"],
         du_axial_dv_axial=result.du_axial_dv_axial + ratio * term.d_v_axial,
-        du_axial_dv_theta=result.du_axial_dv_theta + ratio * term.d_v_theta + term.value / D,
+        du_axial_dv_theta=result.du_axial_dv_theta + ratio * term.d_v_theta + value / D,
         du_axial_dsigma=result.du_axial_dsigma + ratio * term.d_sigma - scaled * d_D["sigma"],
         du_axial_dcl=result.du_axial_dcl + ratio * term.d_cl - scaled * d_D["cl"],
         du_axial_dcd=result.du_axial_dcd + ratio * term.d_cd - scaled * d_D["cd"],

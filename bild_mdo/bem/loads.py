@@ -4,10 +4,9 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_high_induction_option,
-                                        declare_section_options, evaluate_section, section_arguments,
-                                        section_input_names)
-from bild_mdo.bem.flow_states import NO_SOLUTION, PROPELLER
+from bild_mdo.bem.blade_element import (NODE_INPUTS, add_station_section_inputs, declare_section_options,
+                                        evaluate_section, section_arguments, section_input_names)
+from bild_mdo.bem.flow_states import NO_SOLUTION, PROPELLER, declare_high_induction_option
 from bild_mdo.bem.station_velocities import declare_station_velocity_option, kernel_key, station_mode
 from bild_mdo.utils.sparsity import dist_wrt_dist, dist_wrt_node
 

@@ -21,7 +21,7 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE, isa
-from bild_mdo.bem.inflow_residual import HIGH_INDUCTION
+from bild_mdo.bem.inflow_residual import HIGH_INDUCTION, resolve_high_induction
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.energy.power_curve_group import PowerCurveGroup
 from bild_mdo.energy.wind_speeds import MIN_WIND_SPEEDS, TIP_SPEED_LIMIT_WIND_SPEED
@@ -165,8 +165,9 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
         ISA altitude (m); or ``fluid`` (:mod:`bild_mdo.fluid`), then altitude stays 0.
     num_wind_speeds : int
         Points of the curve (at least 5; Gauss-Lobatto nodes, :mod:`bild_mdo.energy.wind_speeds`).
-    high_induction : {'buhl', 'none'}
-        The thrust of annuli past ``a = 0.4``: Buhl's (default, as CCBlade) or momentum theory's.
+    high_induction : {'buhl', 'none', None}
+        The thrust of annuli past ``a = 0.4``: Buhl's (default, as CCBlade; None too, as for
+        :func:`~bild_mdo.bem.analyze_rotor` of a turbine) or momentum theory's.
 
     Returns
     -------
@@ -183,7 +184,8 @@ def power_curve(chord, twist, radius, hub_radius, tip_speed_ratio, rated_power, 
     num_blades = validation.integer("num_blades", num_blades)
     num_wind_speeds = validation.integer("num_wind_speeds", num_wind_speeds, minimum=MIN_WIND_SPEEDS)
     validation.choice("loss_model", loss_model, LOSS_MODELS)
-    validation.choice("high_induction", high_induction, HIGH_INDUCTION)
+    high_induction = validation.choice("high_induction", resolve_high_induction(high_induction, "turbine"),
+                                       HIGH_INDUCTION)
     chord = validation.positive("chord", chord, units="m", ndim=(1, 2))
     twist = validation.real_array("twist", twist, units="rad", ndim=(1, 2))
     if chord.shape[-1] != twist.shape[-1]:

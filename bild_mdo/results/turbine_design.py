@@ -17,6 +17,7 @@ import numpy as np
 
 from bild_mdo import validation
 from bild_mdo.atmosphere import MAX_ALTITUDE
+from bild_mdo.bem.flow_states import CRITICAL_INDUCTION
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.bild.turbine_problem import TURBINE_DISTRIBUTIONS, TURBINE_VALUES, run_turbine_bild  # noqa: F401
 from bild_mdo.constants import RPM_TO_RAD_PER_S
@@ -58,7 +59,7 @@ class TurbineDesign(BatchValues):
         """The power curve and AEP of the designed blade(s) at their design tip-speed ratio
         (:func:`~bild_mdo.results.power_curve.power_curve`: ``rated_power`` in W, ``max_tip_speed`` in m/s or
         None, and its keyword options ``weibull_scale``, ``weibull_shape``, ``cut_in_speed``, ``cut_out_speed``,
-        ``num_wind_speeds``); the blade's airfoil, loss model and air are the design's."""
+        ``num_wind_speeds``, ``high_induction``); the blade's airfoil, loss model and air are the design's."""
         from bild_mdo.results.power_curve import power_curve
 
         one = (lambda value: value) if self.is_batch else (lambda value: value[0])
@@ -88,13 +89,20 @@ class TurbineDesign(BatchValues):
         for frac, chord, twist, a, a_t in zip(one.radial_fractions, one.chord, np.degrees(one.twist),
                                               one.axial_induction, one.tangential_induction):
             lines.append(f"  {frac:15.4f} {chord:12.5g} {twist:12.4f} {a:9.4f} {a_t:9.5f}")
+        notes = []
         outside = np.flatnonzero(one.reynolds_outside_data > 0.0)
         if outside.size:
             re = one.reynolds[outside]
-            lines += ["notes:", f"  {outside.size} station(s) outside the polar's Reynolds-number data, extrapolated "
-                                f"there (Re {np.min(re):.3g}..{np.max(re):.3g}) at r/R "
-                                + ", ".join(f"{x:.3f}" for x in one.radial_fractions[outside])]
-        return "\n".join(lines)
+            notes.append(f"  {outside.size} station(s) outside the polar's Reynolds-number data, extrapolated there "
+                         f"(Re {np.min(re):.3g}..{np.max(re):.3g}) at r/R "
+                         + ", ".join(f"{x:.3f}" for x in one.radial_fractions[outside]))
+        heavy = np.flatnonzero(one.axial_induction > CRITICAL_INDUCTION)
+        if heavy.size:
+            notes.append(f"  {heavy.size} station(s) past a = {CRITICAL_INDUCTION:g} (r/R "
+                         + ", ".join(f"{x:.3f}" for x in one.radial_fractions[heavy])
+                         + "): the loading has momentum theory's thrust there; a turbine BEM analysis applies Buhl's "
+                         "correction by default (analyze_rotor(..., high_induction='none') reproduces the design)")
+        return "\n".join(lines + (["notes:"] + notes if notes else []))
 
 
 def _station_reynolds(out, polar):

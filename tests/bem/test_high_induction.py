@@ -8,12 +8,14 @@ unchanged by the correction).  The test turbine (5 m, analytic NACA 4412-like po
 ratios 9 and 12, where momentum theory alone puts its tip annuli past a = 1 (the vortex-ring state).
 """
 import numpy as np
+import openmdao.api as om
 import pytest
 
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bem import analyze_rotor
 from bild_mdo.bem.analyze import station_radii
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
+from bild_mdo.bem.blade_element import residual_function
 from bild_mdo.bem.flow_states import PROPELLER_BRAKE, TURBULENT_WAKE, WINDMILL
 from bild_mdo.bem.inflow import InflowComp
 from bild_mdo.bem.inflow_residual import (buhl_residual_term, induced_velocities, inflow_residual,
@@ -148,3 +150,85 @@ def test_totals_through_the_bem_group():
                                                 polar=TurbinePolar(POLAR), high_induction="buhl"),
                        of=["thrust", "torque", "power"], wrt=["v_axial", "rpm", "radius", "hub_radius", "chord",
                                                             "twist"], values=values)
+
+
+def _station(twist_deg, chord_over_r, r_over_r, tsr):
+    """Flat inputs of one turbine station (the kernels of ``InflowComp.solve_nonlinear``)."""
+    r = r_over_r * R
+    return dict(v_axial=np.array([WIND]), rpm=np.array([float(_rpm(tsr))]), radii=np.array([r]),
+                chord=np.array([chord_over_r * r]), twist=np.array([np.radians(twist_deg)]), rho=np.array([RHO]),
+                mu=np.array([1.8e-5]), radius=np.array([R]), hub_radius=np.array([HUB]), num_blades=B,
+                polar=TurbinePolar(POLAR), loss_model="tip_hub", speed_of_sound=np.array([340.0]),
+                collective_pitch=np.array([0.0]))
+
+
+def test_the_least_induced_of_several_roots_is_taken():
+    # A heavily loaded station (found by a random search) whose residual has three roots in region 1 with the
+    # correction (a = 0.60, 0.54, 0.34, by a dense scan) and one below a = 0.4 without it.  The solve returns
+    # the least induced (the largest phi), momentum theory's root, from any start and in a warm start.
+    kernels = _station(-3.352936777823533, 0.22994006537465947, 0.2125, 11.987381458610637)
+    grid = np.linspace(1e-6, 0.5 * np.pi, 200001)
+    roots = {}
+    for h in ("none", "buhl"):
+        value = residual_function(**kernels, high_induction=h)(grid, np.zeros(grid.size, int))[0]
+        roots[h] = grid[np.flatnonzero(np.sign(value[:-1]) != np.sign(value[1:]))]
+    assert roots["buhl"].size == 3 and roots["buhl"][-1] == pytest.approx(roots["none"][-1], abs=1e-4)
+    values = {name: np.full((NN,) + kernels[name].shape, kernels[name][0])
+              for name in ("v_axial", "rpm", "radius", "hub_radius", "rho", "mu")}
+    values.update({name: np.full((NN, NR), kernels[name][0]) for name in ("chord", "twist")})
+    values["radii"] = np.tile(np.linspace(0.9, 1.1, NR) * kernels["radii"][0], (NN, 1))
+    values["radii"][:, 2] = kernels["radii"][0]
+    for warm in (False, True):
+        prob = om.Problem(reports=False)
+        prob.model.add_subsystem("inflow", InflowComp(num_nodes=NN, num_radial=NR, num_blades=B,
+                                                      polar=TurbinePolar(POLAR), high_induction="buhl",
+                                                      on_invalid="ignore", warm_start=warm), promotes=["*"])
+        prob.setup()
+        for name, value in values.items():
+            prob.set_val(name, value)
+        for start in (0.1497, 0.2508) if warm else (None,):
+            if start is not None:
+                prob.model.inflow._previous_phi = np.full(NN * NR, start)
+            prob.run_model()
+            np.testing.assert_allclose(prob.get_val("phi")[:, 2], roots["buhl"][-1], atol=1e-4)
+
+
+def test_warm_and_cold_solves_agree_with_the_correction():
+    # Random turbine blades and twist steps (the warm start's use, a driver moving the design): the warm solve
+    # returns the cold solve's roots (InflowComp's docstring), with the rule above where several roots exist.
+    rng = np.random.default_rng(1)
+    nn, nr = 100, 12
+    radii = station_radii(np.full(nn, R), np.full(nn, HUB), nr)
+    values = dict(v_axial=np.full(nn, WIND), rpm=_rpm(rng.uniform(3.0, 16.0, nn)), radius=np.full(nn, R),
+                  hub_radius=np.full(nn, HUB), radii=radii, chord=rng.uniform(0.02, 0.3, (nn, nr)) * radii,
+                  twist=np.radians(rng.uniform(-5.0, 25.0, (nn, nr))), rho=np.full(nn, RHO), mu=np.full(nn, 1.8e-5))
+    probs = []
+    for warm in (True, False):
+        prob = om.Problem(reports=False)
+        prob.model.add_subsystem("inflow", InflowComp(num_nodes=nn, num_radial=nr, num_blades=B,
+                                                      polar=TurbinePolar(POLAR), high_induction="buhl",
+                                                      on_invalid="ignore", warm_start=warm), promotes=["*"])
+        prob.setup()
+        probs.append(prob)
+    heavy = 0
+    for step in range(4):
+        values["twist"] = values["twist"] + np.radians(rng.normal(0.0, 0.3, (nn, nr)))
+        for prob in probs:
+            for name, value in values.items():
+                prob.set_val(name, value)
+            prob.run_model()
+        np.testing.assert_allclose(probs[0].get_val("phi"), probs[1].get_val("phi"), atol=1e-10, rtol=0.0)
+        heavy += np.count_nonzero(probs[1].get_val("flow_state") != TURBULENT_WAKE)
+    assert heavy > 0
+
+
+def test_the_degenerate_end_of_buhls_relation_is_flagged():
+    # A propeller with negative pitch near hover (V_x = 0.03 m/s at 5000 rpm): with the correction the only root
+    # in region 1 lies at a -> 1 (W -> 0), the end of Buhl's relation, and is flagged, as momentum theory's
+    # mirror root is without it (bild_mdo.bem.flow_states.BUHL_MAX_INDUCTION).
+    args = (np.full(3, 0.05), np.radians([-12.0, -10.0, -8.0]), 0.5, 0.1, 5000.0, 0.03, 2, POLAR)
+    for h in ("none", "buhl"):
+        res = analyze_rotor(*args, high_induction=h, on_invalid="ignore")
+        assert np.all(res.flow_state == TURBULENT_WAKE), h
+    res = analyze_rotor(*args, high_induction="buhl", on_invalid="ignore")
+    assert np.all(1.0 - res.u_axial / 0.03 > 0.95)
