@@ -170,7 +170,8 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     on_invalid : {'warn', 'raise', 'ignore'}
         Stations in a flow state the momentum model does not represent: no momentum solution
         (zero loading returned), turbulent wake / vortex ring (``V_x > 0``, ``dT < 0``, axial
-        induction ``a > 0.4``, or ``a > 0.95`` with ``high_induction='buhl'``) or, with ``solve_range='full'``, a mirror root (``W < 0``); see
+        induction ``a > 0.4``; ``a > 0.95`` instead with ``high_induction='buhl'``) or, with
+        ``solve_range='full'``, a mirror root (``W < 0``); see
         :mod:`bild_mdo.bem.flow_states`.  'warn' (default): one
         :class:`~bild_mdo.bem.flow_states.BEMStateWarning` naming them (node, station, r/R, state;
         the first few and the count); 'raise': :class:`openmdao.api.AnalysisError` naming them;
@@ -183,7 +184,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     high_induction : {None, 'none', 'buhl'}
         The momentum thrust of an annulus past ``a = 0.4`` (``V_x > 0``): 'none', momentum theory, the
         station flagged ``TURBULENT_WAKE``; 'buhl', Buhl's (2005) empirical thrust, as CCBlade and AeroDyn
-        apply, the station valid (:mod:`bild_mdo.bem.inflow_residual`).  None (default): 'buhl' for a
+        apply, the station valid up to ``a = 0.95`` (:mod:`bild_mdo.bem.inflow_residual`).  None (default): 'buhl' for a
         turbine, 'none' for a propeller.
     rotor_type : {'propeller', 'turbine'}
         'propeller' (default): thrust-producing rotors, as always.  'turbine': a wind turbine,

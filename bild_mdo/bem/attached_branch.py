@@ -30,10 +30,12 @@ region-1 root where the correction acts (``a > 0.4``, :func:`high_induction_cand
 residual and its slope are sampled on ``(phi, pi/2]`` at :data:`HIGH_INDUCTION_SCAN_POINTS`
 angles, and the admissible root at the largest ``phi``, the least induced, is taken
 (:func:`least_induced_root`): in the last interval with a sign change, or where two roots hide
-between two negative samples (the slope rising at the left one and falling at the right), above
-the peak the slopes locate.  So cold and warm solves agree, and a root below ``a = 0.4``,
-momentum theory's, is kept where it exists.  Limitation: a pair of roots closer together than the
-samples resolve, with its peak missed too, is not seen (as for stall, the pair is then just born).
+between two negative samples (the cubic Hermite fit of their values and slopes rises above zero
+and the residual at its peak confirms it).  So cold and warm solves agree where the correction
+acts, and a root below ``a = 0.4``, momentum theory's, above the candidate is kept.  (A turbine's
+stalled triple of roots all below ``a = 0.4`` is covered by neither rule, with or without the
+correction.)  Limitation: a pair of roots closer together than the samples and the fit resolve
+is not seen (as for stall, the pair is then just born).
 """
 from __future__ import annotations
 
@@ -46,7 +48,8 @@ from bild_mdo.bem.root_finding import _check_finite, _scan_admissible, _solve_in
 
 #: Scan points between the stalled root and the upper end (the roots of an S-curve are degrees apart).
 SCAN_POINTS = 24
-#: Scan points between a root past a = 0.4 and pi/2 (the roots Buhl's correction adds lie 0.02-0.1 rad apart).
+#: Samples between a root past a = 0.4 and pi/2 (with their slopes: a root pair between two is found by the
+#: cubic fit; the roots Buhl's correction adds lie 0.005-0.1 rad apart).
 HIGH_INDUCTION_SCAN_POINTS = 64
 #: First scan point above the root, as a fraction of the scan step (so the root itself is not counted).
 _OFFSET = 1.0e-3
@@ -150,48 +153,54 @@ def high_induction_candidates(phi, found, kernels, high_induction):
 def least_induced_root(residual, admissible, phi, candidates, describe, tol, max_iter,
                        points=HIGH_INDUCTION_SCAN_POINTS):
     """Replace roots at ``candidates`` by the admissible root at the largest ``phi`` in ``(phi, pi/2]`` (module
-    docstring: sign changes of the samples, and root pairs hidden between two negative samples).
+    docstring: sign changes of the samples, and root pairs between two negative samples where the cubic Hermite
+    fit of their values and slopes rises above zero and the residual at its peak confirms it).
 
-    Arguments as :func:`attached_branch`'s (``phi`` modified in place).
+    ``residual, admissible, phi, describe, tol, max_iter`` as :func:`attached_branch`'s (``phi`` modified in
+    place); ``points``: samples above each root.  Admissibility is tested at the ends of the chosen interval; a
+    root there that is not admissible leaves the station's root as it was.
     """
     lower = phi[candidates]
-    n = candidates.size
     fractions = np.concatenate([[_OFFSET], np.arange(1, points + 1)]) / points
     grid = lower[:, None] + (0.5 * np.pi - lower)[:, None] * fractions
     stations = np.repeat(candidates, grid.shape[1])
     value, slope = (x.reshape(grid.shape) for x in residual(grid.ravel(), stations))
     _check_finite(value.ravel(), stations, grid.ravel(), describe)
-    ok = admissible(grid.ravel(), stations).reshape(grid.shape)
-    change = opposite_signs(value[:, :-1], value[:, 1:]) & ok[:, :-1] & ok[:, 1:]
-    # Two roots between negative samples: the peak where the slope's linear interpolant vanishes.
-    hidden = (value[:, :-1] < 0.0) & (value[:, 1:] < 0.0) & (slope[:, :-1] > 0.0) & (slope[:, 1:] < 0.0)
+    change = opposite_signs(value[:, :-1], value[:, 1:])
+    # Two roots between negative samples: the peak of the cubic Hermite fit p(t) = y0 + c t + b t^2 + a t^3.
+    width = np.diff(grid, axis=1)
+    y0, y1, d0, d1 = value[:, :-1], value[:, 1:], slope[:, :-1] * width, slope[:, 1:] * width
+    a, b = 2.0 * (y0 - y1) + d0 + d1, 3.0 * (y1 - y0) - 2.0 * d0 - d1
+    with np.errstate(all="ignore"):
+        disc = np.sqrt(np.maximum(b * b - 3.0 * a * d0, 0.0))
+        best_t, best_p = np.zeros(y0.shape), np.full(y0.shape, -np.inf)
+        for t in ((-b + disc) / (3.0 * a), (-b - disc) / (3.0 * a), -d0 / (2.0 * b)):
+            t = np.where(np.isfinite(t) & (t > 0.0) & (t < 1.0), t, 0.5)
+            fit = y0 + t * (d0 + t * (b + t * a))
+            better = fit > best_p
+            best_t, best_p = np.where(better, t, best_t), np.where(better, fit, best_p)
+    hidden = (y0 < 0.0) & (y1 < 0.0) & (best_p > 0.0)
     rows, cols = np.nonzero(hidden)
-    left = grid[rows, cols].copy()
+    start, value_left = grid[:, :-1].copy(), value[:, :-1].copy()
     if rows.size:
-        width = grid[rows, cols + 1] - grid[rows, cols]
-        peak = grid[rows, cols] + width * slope[rows, cols] / (slope[rows, cols] - slope[rows, cols + 1])
+        peak = grid[rows, cols] + width[rows, cols] * best_t[rows, cols]
         top = residual(peak, candidates[rows])[0]
-        above = (top > 0.0) & admissible(peak, candidates[rows]) & ok[rows, cols + 1]
+        above = top > 0.0
         change[rows[above], cols[above]] = True
-        left[above] = peak[above]
-        value_left = value.copy()
+        start[rows[above], cols[above]] = peak[above]
         value_left[rows[above], cols[above]] = top[above]
-    else:
-        value_left = value
     has = change.any(axis=1)
     if not np.any(has):
         return
     at = np.flatnonzero(has)
     last = change.shape[1] - 1 - np.argmax(change[:, ::-1], axis=1)[has]
-    lo = grid[at, last]
-    if rows.size:  # a refined interval begins at its peak
-        refined = np.zeros(change.shape, dtype=bool)
-        refined[rows, cols] = True
-        start = np.full(change.shape, np.nan)
-        start[rows, cols] = left
-        lo = np.where(refined[at, last], start[at, last], lo)
     sel = candidates[at]
-    roots = _solve_in(residual, sel, lo, grid[at, last + 1], value_left[at, last], value[at, last + 1], None,
-                      describe, tol, max_iter)
+    lo, hi = start[at, last], grid[at, last + 1]
+    ends = admissible(lo, sel) & admissible(hi, sel)
+    if not np.any(ends):
+        return
+    at, last, sel, lo, hi = at[ends], last[ends], sel[ends], lo[ends], hi[ends]
+    roots = _solve_in(residual, sel, lo, hi, value_left[at, last], value[at, last + 1], None, describe, tol,
+                      max_iter)
     good = admissible(roots, sel) & (roots >= phi[sel])
     phi[sel[good]] = roots[good]

@@ -380,7 +380,6 @@ def declare_section_options(options, radial=True, polar=True):
                     desc="Prandtl loss factor: tip x hub, tip only, or none")
 
 
-
 def add_section_inputs(comp, names=SECTION_INPUTS, **values):
     """Declare the blade-element inputs ``names`` on ``comp`` (BEM stations or BILD's reference station).
 

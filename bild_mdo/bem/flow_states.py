@@ -49,7 +49,8 @@ in ``benchmarks/bem_robustness.py``).  Code 4 keeps the momentum root and is fla
 turbulent-wake correction (NREL/TP-500-36834, used by AeroDyn and CCBlade) is applied with the
 option ``high_induction='buhl'`` (:mod:`bild_mdo.bem.inflow_residual`): then a station with
 ``0.4 < a <= 0.95`` has Buhl's thrust and is a valid windmill or propeller brake (code 2 or 3), and
-only a larger ``a``, the degenerate end of his relation (:data:`BUHL_MAX_INDUCTION`), stays code 4.  By default (``'none'``) it is not applied: it is a fit to wind-turbine
+only a larger ``a``, the degenerate end of his relation (:data:`BUHL_MAX_INDUCTION`), stays code 4.  By
+default (``'none'``) it is not applied: it is a fit to wind-turbine
 data for ``0.4 < a < 1``, its extension to ``a > 1`` (reversed through-flow, the case of a
 propeller annulus with negative pitch) is unvalidated, and without it such stations are flagged.
 

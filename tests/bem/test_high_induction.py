@@ -14,6 +14,7 @@ import pytest
 from bild_mdo.airfoil.analytic import AnalyticPolar
 from bild_mdo.bem import analyze_rotor
 from bild_mdo.bem.analyze import station_radii
+from bild_mdo.bem.attached_branch import high_induction_candidates
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
 from bild_mdo.bem.blade_element import residual_function
 from bild_mdo.bem.flow_states import PROPELLER_BRAKE, TURBULENT_WAKE, WINDMILL
@@ -195,7 +196,9 @@ def test_the_least_induced_of_several_roots_is_taken():
 
 def test_warm_and_cold_solves_agree_with_the_correction():
     # Random turbine blades and twist steps (the warm start's use, a driver moving the design): the warm solve
-    # returns the cold solve's roots (InflowComp's docstring), with the rule above where several roots exist.
+    # returns the cold solve's roots, with the rule above where the correction allows several roots.  (A turbine's
+    # stalled triple of roots below a = 0.4 is not covered by either rule, with or without the correction: about
+    # 1 station in 20,000 of such random blades; this seed has none.)
     rng = np.random.default_rng(1)
     nn, nr = 100, 12
     radii = station_radii(np.full(nn, R), np.full(nn, HUB), nr)
@@ -218,8 +221,13 @@ def test_warm_and_cold_solves_agree_with_the_correction():
                 prob.set_val(name, value)
             prob.run_model()
         np.testing.assert_allclose(probs[0].get_val("phi"), probs[1].get_val("phi"), atol=1e-10, rtol=0.0)
-        heavy += np.count_nonzero(probs[1].get_val("flow_state") != TURBULENT_WAKE)
-    assert heavy > 0
+        flat = {name: np.broadcast_to(np.asarray(value).reshape(nn, -1), (nn, nr)).ravel()
+                for name, value in values.items()}
+        kernels = dict(flat, num_blades=B, polar=TurbinePolar(POLAR), loss_model="tip_hub",
+                       speed_of_sound=np.full(nn * nr, 340.0), collective_pitch=np.zeros(nn * nr))
+        phi = probs[1].get_val("phi").ravel()
+        heavy += high_induction_candidates(phi, np.ones(phi.size, dtype=bool), kernels, "buhl").size
+    assert heavy > 100  # roots past a = 0.4, where the rule runs
 
 
 def test_the_degenerate_end_of_buhls_relation_is_flagged():
