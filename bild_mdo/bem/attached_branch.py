@@ -80,10 +80,16 @@ def attached_branch(residual, admissible, phi, candidates, upper, describe, tol,
     idx, lower, upper = candidates[keep], lower[keep], upper[keep]
     if idx.size == 0:
         return
-    fractions = np.concatenate([[_OFFSET], np.arange(1, SCAN_POINTS + 1)]) / SCAN_POINTS
-    grid = lower[:, None] + (upper - lower)[:, None] * fractions
+    grid = _samples_above(lower, upper, SCAN_POINTS)
     _scan_admissible(residual, admissible, phi, np.zeros(phi.size, dtype=bool), describe, tol, max_iter, idx,
                      grid, last=True)
+
+
+def _samples_above(lower, upper, points):
+    """Per station, ``points`` equal steps from ``lower`` to ``upper`` and one sample just above ``lower``
+    (:data:`_OFFSET` of a step, so the root itself is not counted): shape ``(n, points + 1)``."""
+    fractions = np.concatenate([[_OFFSET], np.arange(1, points + 1)]) / points
+    return lower[:, None] + (upper - lower)[:, None] * fractions
 
 
 def stalled_candidates(phi, found, kernels):
@@ -160,9 +166,7 @@ def least_induced_root(residual, admissible, phi, candidates, describe, tol, max
     place); ``points``: samples above each root.  Admissibility is tested at the ends of the chosen interval; a
     root there that is not admissible leaves the station's root as it was.
     """
-    lower = phi[candidates]
-    fractions = np.concatenate([[_OFFSET], np.arange(1, points + 1)]) / points
-    grid = lower[:, None] + (0.5 * np.pi - lower)[:, None] * fractions
+    grid = _samples_above(phi[candidates], 0.5 * np.pi, points)
     stations = np.repeat(candidates, grid.shape[1])
     value, slope = (x.reshape(grid.shape) for x in residual(grid.ravel(), stations))
     _check_finite(value.ravel(), stations, grid.ravel(), describe)

@@ -161,8 +161,7 @@ def _residual_value(phi, v_axial, v_theta, sigma, cl, cd, F):
 
 def _buhl_gap(phi, v_axial, v_theta, sigma, cl, cd, F):
     """``(g, s, E, D, on)``: ``g = 3 E - 5 sin(phi)`` where Buhl's correction acts (``on``), 0 elsewhere."""
-    s, c = np.sin(phi), np.cos(phi)
-    denominator = 4.0 * F * (sign_of_sine(phi) * s) * c + sigma * (cl * s + cd * c)
+    s, _, _, _, _, _, _, denominator = _eq8_terms(phi, sigma, cl, cd, F)
     with np.errstate(divide="ignore", invalid="ignore"):
         excess = v_axial * denominator / (4.0 * F * v_theta * s)
         gap = 3.0 * excess - 5.0 * s
@@ -196,8 +195,7 @@ def buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F):
         lead = np.where(on, (4.0 / 9.0) * gap, 0.0)
         e_over_d = np.where(on, v_axial / (4.0 * F * v_theta * s), 0.0)
         e_over_s = np.where(on, excess / s, 0.0)
-    c_x, c_theta = cl * c - cd * s, cl * s + cd * c
-    d_denominator_dphi = 4.0 * F * sign_of_sine(phi) * np.cos(2.0 * phi) + sigma * c_x
+    d_D = _denominator_partials(phi, sigma, cl, cd, F)
     shape = np.broadcast(value, phi).shape
 
     def b(x):
@@ -206,13 +204,13 @@ def buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F):
     with np.errstate(divide="ignore", invalid="ignore"):
         return BuhlTerm(
             value=value,
-            d_phi=b(lead * (3.0 * (e_over_d * d_denominator_dphi - e_over_s * c) - 5.0 * c)),
+            d_phi=b(lead * (3.0 * (e_over_d * d_D["phi"] - e_over_s * c) - 5.0 * c)),
             d_v_axial=b(np.where(on, lead * 3.0 * excess / v_axial, 0.0)),
             d_v_theta=b(np.where(on, -lead * 3.0 * excess / v_theta, 0.0)),
-            d_sigma=b(lead * 3.0 * e_over_d * c_theta),
-            d_cl=b(lead * 3.0 * e_over_d * sigma * s),
-            d_cd=b(lead * 3.0 * e_over_d * sigma * c),
-            d_F=b(np.where(on, lead * 3.0 * (e_over_d * 4.0 * (sign_of_sine(phi) * s) * c - excess / F), 0.0)),
+            d_sigma=b(lead * 3.0 * e_over_d * d_D["sigma"]),
+            d_cl=b(lead * 3.0 * e_over_d * d_D["cl"]),
+            d_cd=b(lead * 3.0 * e_over_d * d_D["cd"]),
+            d_F=b(np.where(on, lead * 3.0 * (e_over_d * d_D["F"] - excess / F), 0.0)),
         )
 
 
@@ -299,6 +297,13 @@ def inflow_residual_value(phi, v_axial, v_theta, sigma, cl, cd, F, high_inductio
     return value
 
 
+def _denominator_partials(phi, sigma, cl, cd, F):
+    """Partials of Eq. (8)'s ``D = 4 F |sin| cos + sigma C_theta`` (explicit: ``cl, cd, F`` fixed), by argument."""
+    s, c, c_x, c_theta, _, _, _, _ = _eq8_terms(phi, sigma, cl, cd, F)
+    return {"phi": 4.0 * F * sign_of_sine(phi) * np.cos(2.0 * phi) + sigma * c_x, "sigma": c_theta,
+            "cl": sigma * s, "cd": sigma * c, "F": 4.0 * (sign_of_sine(phi) * s) * c}
+
+
 def _eq8_terms(phi, sigma, cl, cd, F):
     """``sin, cos, C_x, C_theta`` and the terms ``P = 4 F |sin| cos``, ``N = sigma C_theta``,
     ``M = sigma C_x``, ``D = P + N`` of Eq. (8)."""
@@ -343,12 +348,11 @@ def _buhl_velocity(result, phi, v_axial, v_theta, sigma, cl, cd, F):
     u_axial = result.u_axial + buhl_axial_velocity(phi, v_axial, v_theta, sigma, cl, cd, F)
     term = buhl_term(phi, v_axial, v_theta, sigma, cl, cd, F)
     phi, v_axial, v_theta, sigma, cl, cd, F = map(_real, (phi, v_axial, v_theta, sigma, cl, cd, F))
-    s, c, c_x, c_theta, _, _, _, D = _eq8_terms(phi, sigma, cl, cd, F)
+    D = _eq8_terms(phi, sigma, cl, cd, F)[-1]
     # d(dR V / D) = (V / D) d(dR) + (dR / D) dV - (dR V / D^2) dD, at the real parts
     value = _real(term.value)
     ratio, scaled = v_theta / D, value * v_theta / D**2
-    d_D = {"phi": 4.0 * F * sign_of_sine(phi) * np.cos(2.0 * phi) + sigma * c_x, "sigma": c_theta,
-           "cl": sigma * s, "cd": sigma * c, "F": 4.0 * (sign_of_sine(phi) * s) * c}
+    d_D = _denominator_partials(phi, sigma, cl, cd, F)
     return result._replace(
         u_axial=u_axial,
         du_axial_dphi=result.du_axial_dphi + ratio * term.d_phi - scaled * d_D["phi"],

@@ -163,6 +163,16 @@ def _station(twist_deg, chord_over_r, r_over_r, tsr):
                 collective_pitch=np.array([0.0]))
 
 
+def _inflow_problem(nn, nr, warm_start):
+    """A set-up problem of the turbine's InflowComp with Buhl's correction."""
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("inflow", InflowComp(num_nodes=nn, num_radial=nr, num_blades=B, polar=TurbinePolar(POLAR),
+                                                  high_induction="buhl", on_invalid="ignore", warm_start=warm_start),
+                             promotes=["*"])
+    prob.setup()
+    return prob
+
+
 def test_the_least_induced_of_several_roots_is_taken():
     # A heavily loaded station (found by a random search) whose residual has three roots in region 1 with the
     # correction (a = 0.60, 0.54, 0.34, by a dense scan) and one below a = 0.4 without it.  The solve returns
@@ -180,11 +190,7 @@ def test_the_least_induced_of_several_roots_is_taken():
     values["radii"] = np.tile(np.linspace(0.9, 1.1, NR) * kernels["radii"][0], (NN, 1))
     values["radii"][:, 2] = kernels["radii"][0]
     for warm in (False, True):
-        prob = om.Problem(reports=False)
-        prob.model.add_subsystem("inflow", InflowComp(num_nodes=NN, num_radial=NR, num_blades=B,
-                                                      polar=TurbinePolar(POLAR), high_induction="buhl",
-                                                      on_invalid="ignore", warm_start=warm), promotes=["*"])
-        prob.setup()
+        prob = _inflow_problem(NN, NR, warm)
         for name, value in values.items():
             prob.set_val(name, value)
         for start in (0.1497, 0.2508) if warm else (None,):
@@ -205,14 +211,7 @@ def test_warm_and_cold_solves_agree_with_the_correction():
     values = dict(v_axial=np.full(nn, WIND), rpm=_rpm(rng.uniform(3.0, 16.0, nn)), radius=np.full(nn, R),
                   hub_radius=np.full(nn, HUB), radii=radii, chord=rng.uniform(0.02, 0.3, (nn, nr)) * radii,
                   twist=np.radians(rng.uniform(-5.0, 25.0, (nn, nr))), rho=np.full(nn, RHO), mu=np.full(nn, 1.8e-5))
-    probs = []
-    for warm in (True, False):
-        prob = om.Problem(reports=False)
-        prob.model.add_subsystem("inflow", InflowComp(num_nodes=nn, num_radial=nr, num_blades=B,
-                                                      polar=TurbinePolar(POLAR), high_induction="buhl",
-                                                      on_invalid="ignore", warm_start=warm), promotes=["*"])
-        prob.setup()
-        probs.append(prob)
+    probs = [_inflow_problem(nn, nr, warm) for warm in (True, False)]
     heavy = 0
     for step in range(4):
         values["twist"] = values["twist"] + np.radians(rng.normal(0.0, 0.3, (nn, nr)))
