@@ -209,3 +209,20 @@ def test_inputs_outside_the_domain_fail_the_station_only():
     sol = solve_stations(table, bad)
     assert sol.status[2] == 4 and np.all(np.delete(sol.status, 2) != 4)
     assert np.isnan(sol.x0[2]) and sol.label[2] == -1
+
+
+def test_the_cd_cl_skip_of_sheets_next_to_the_solution_changes_no_station(monkeypatch):
+    # reynolds_exact.solve.NEAR_RATIO skips a sheet next to the solution whose cd/cl where it is met lies more than
+    # that factor above the solution's (Phi grows with cd/cl at a fixed angle): with the skip off (an infinite
+    # factor) every one of these 3,000 stations is the same, bit for bit.
+    import bild_mdo.bild.variants.reynolds_exact.solve as solve_module
+
+    table = load_path_table(default_polar())
+    flow = _flow(3000, seed=11)
+    skipped = solve_stations(table, flow)
+    monkeypatch.setattr(solve_module, "NEAR_RATIO", np.inf)
+    every = solve_stations(table, flow)
+    np.testing.assert_array_equal(skipped.label, every.label)
+    np.testing.assert_array_equal(skipped.phi, every.phi)
+    np.testing.assert_array_equal(skipped.values, every.values)
+    assert np.sum(skipped.status == LOADED) >= 2000

@@ -21,10 +21,9 @@ from bild_mdo.airfoil.load_path_table import X_STEP
 from bild_mdo.bild.variants.local_point.paper_kernels import paper_angle_one
 from bild_mdo.bild.variants.local_point.kernels import (
     candidates_one,
+    finish_one,
     momentum_one,
-    polish_one,
     station_setup,
-    station_values_one,
     trail_begin,
     trail_prediction,
     trail_record,
@@ -62,14 +61,14 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
     ``settings``: ``(barrier, max_iter, angle_tol, root_step, start_ratio, lowest_ratio,
     switches)``.  Writes ``out[10, n]``: ``phi, x0, label, code`` (code 0 loaded, 1 unloaded, 4 outside the domain, 5 loaded past the
     table's top) and, where loaded, the station's values (NaN elsewhere)
-    (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
+    (:func:`~bild_mdo.bild.variants.local_point.kernels.finish_one`).
     """
     coef, slots, cover_first, cover_last, offset, kind, _, _, _, grid, coef_ell, coef_alpha = table
     sheets = (cover_first, cover_last, offset, kind)
     x_first, nx, x_last = grid[0], int(grid[1]), grid[2]
     barrier, max_iter, angle_tol, root_step, start_ratio, lowest_ratio, switches = settings
     solve_settings = (barrier, max_iter, angle_tol, root_step)
-    k = slots.shape[2]
+    k = slots.shape[1]
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
     st = np.zeros(_STATE_SIZE)
     work = np.zeros(1)
@@ -133,13 +132,12 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
                 break
         if math.isfinite(best_s):
             _set_sheet(c, sheets, best_label)
-            row[1] = polish_one(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K], c[_K_TIP], c[_K_HUB],
-                                c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            values = finish_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K],
+                                c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            row[1] = values[0]
             row[0], row[2], row[3] = best_phi, best_label, 5.0 if row[1] > x_last - X_STEP else 0.0
-            values = station_values_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET],
-                                           c[_VX], c[_VT], best_phi, row[1], torque)
             for q in range(6):
-                row[4 + q] = values[q]
+                row[4 + q] = values[1 + q]
             trail_record(trail, best_label, best_phi - first, flow[3, j])
         else:
             trail_record(trail, -1, 0.0, 0.0)

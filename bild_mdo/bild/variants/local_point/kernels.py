@@ -39,17 +39,26 @@ _NAN = math.nan
 def table_arrays(table):
     """The arrays of a :class:`~bild_mdo.airfoil.load_path_table.LoadPathTable` that the kernels read (kept on
     the table): ``(coef_s, slots, cover_first, cover_last, offset, kind, end_x0, end_label, end_inward, grid,
-    coef_ell, coef_alpha)`` with ``grid = (x_first, nx, x_last)`` and the cubics' coefficients ``[rows, 4]``."""
+    coef_ell, coef_alpha)`` with ``grid = (x_first, nx, x_last)``, the cubics' coefficients ``[rows, 4]`` and
+    ``slots[nx, SLOTS, 6]`` the table's node slots (:meth:`~bild_mdo.airfoil.load_path_table.LoadPathTable.
+    node_slots`) with the fields of one slot side by side and the sheets of a node first, in their order."""
     arrays = getattr(table, "_kernel_arrays", None)
     if arrays is None:
         ends = table.sheet_ends()
-        arrays = (np.ascontiguousarray(table.coef[0].T), np.ascontiguousarray(table.node_slots()),
+        arrays = (np.ascontiguousarray(table.coef[0].T), _packed_slots(table.node_slots()),
                   table.cover_first.astype(np.int64), table.cover_last.astype(np.int64),
                   (table.row0 - table.first).astype(np.int64), table.kind.astype(float), ends[0],
                   ends[1].astype(np.int64), ends[2], np.array([table.x_first, table.nx, table.x_last]),
                   np.ascontiguousarray(table.coef[1].T), np.ascontiguousarray(table.coef[2].T))
         table._kernel_arrays = arrays
     return arrays
+
+
+def _packed_slots(slots):
+    """``[nx, SLOTS, 6]``: the slots of each node with a sheet first (stable), one slot's fields contiguous."""
+    fields = slots.transpose(0, 2, 1)
+    order = np.argsort(fields[:, :, 0] < 0.0, axis=1, kind="stable")
+    return np.ascontiguousarray(np.take_along_axis(fields, order[:, :, None], axis=1))
 
 
 @kernel
@@ -254,18 +263,18 @@ def candidates_one(slots, x_first, nx, x, tau, labels, x0s, scores):
         return 0
     node = int(cell)
     count = 0
-    for k in range(slots.shape[2]):
-        label = slots[node, 0, k]
-        if label < 0.0:
-            continue
-        s, s1, kind, low, high = slots[node, 1, k], slots[node, 2, k], slots[node, 3, k], slots[node, 4, k], \
-            slots[node, 5, k]
+    for k in range(slots.shape[1]):
+        label = slots[node, k, 0]
+        if label < 0.0:  # the sheets of a node come first (table_arrays)
+            break
+        s, s1, kind, low, high = slots[node, k, 1], slots[node, k, 2], slots[node, k, 3], slots[node, k, 4], \
+            slots[node, k, 5]
         ratio = 1.0 + tau * s
-        if not ratio > 0.0:
+        if not (ratio > 0.0 and kind * (1.0 + tau * s1 / ratio) > 0.0):
             continue
         x0 = x - math.log(ratio)
         cell0 = math.floor((x0 - x_first) * _INV_STEP)
-        if cell0 >= low and cell0 < high and kind * (1.0 + tau * s1 / ratio) > 0.0:
+        if cell0 >= low and cell0 < high:
             labels[count] = int(label)
             x0s[count] = x0
             scores[count] = s
@@ -274,36 +283,31 @@ def candidates_one(slots, x_first, nx, x, tau, labels, x0s, scores):
 
 
 @kernel
-def polish_one(coef, x_first, low, high, offset, log_k, k_tip, k_hub, vx, vt, phi, x0, torque, loss):
-    """``x0`` after one Newton step on ``R2`` at ``phi`` (as
-    :func:`~bild_mdo.bild.variants.reynolds_exact.solve.polish`)."""
+def finish_one(coef, coef_ell, coef_alpha, x_first, low, high, offset, log_k, k_tip, k_hub, vx, vt, phi, x0, torque,
+               loss):
+    """A chosen state's last step and what the station passes on: ``x0`` after one Newton step on ``R2`` at
+    ``phi`` (as :func:`~bild_mdo.bild.variants.reynolds_exact.solve.polish`), then at that ``x0`` (as
+    :func:`~bild_mdo.bild.variants.local_point.load_path_model.station_outputs`) ``eta2, alpha, cl, cd, Re,
+    Re C``."""
     sn, cs = math.sin(phi), math.cos(phi)
-    f = prandtl_value_one(sn, k_tip, k_hub, loss)
     log_p, tau = form_one(sn, cs, torque)
     covered, s, s1 = sheet_s(coef, x_first, low, high, offset, x0)
-    if not covered:
-        return x0
-    x_m, x_s = light_load(log_k, f, sn, cs, s, vx, vt, torque, log_p)
-    ratio = 1.0 + tau * s
-    step = (x_m - x0 - math.log(ratio)) / (x_s * s1 - 1.0 - tau * s1 / ratio)
-    return x0 - step if math.isfinite(step) else x0
-
-
-@kernel
-def station_values_one(coef, coef_ell, coef_alpha, x_first, low, high, offset, vx, vt, phi, x0, torque):
-    """What a station passes on at its state (as :func:`~bild_mdo.bild.variants.local_point.load_path_model.
-    station_outputs`): ``eta2, alpha, cl, cd, Re, Re C``."""
+    if covered:
+        f = prandtl_value_one(sn, k_tip, k_hub, loss)
+        x_m, x_s = light_load(log_k, f, sn, cs, s, vx, vt, torque, log_p)
+        ratio = 1.0 + tau * s
+        step = (x_m - x0 - math.log(ratio)) / (x_s * s1 - 1.0 - tau * s1 / ratio)
+        if math.isfinite(step):
+            x0 = x0 - step
     covered, u, c0, c1, c2, c3 = lookup(coef, x_first, low, high, offset, x0)
     s = c0 + u * (c1 + u * (c2 + u * c3))
     covered, u, c0, c1, c2, c3 = lookup(coef_ell, x_first, low, high, offset, x0)
     ell = c0 + u * (c1 + u * (c2 + u * c3))
     covered, u, c0, c1, c2, c3 = lookup(coef_alpha, x_first, low, high, offset, x0)
     alpha = c0 + u * (c1 + u * (c2 + u * c3))
-    sn, cs = math.sin(phi), math.cos(phi)
-    log_p, tau = form_one(sn, cs, torque)
     cl = math.exp(x0 - ell)
     w = (vx * (sn + s * cs) + vt * (cs - s * sn)) * cs
-    return w / vt, alpha, cl, s * cl, math.exp(ell), math.exp(log_p + x0) * (1.0 + tau * s)
+    return x0, w / vt, alpha, cl, s * cl, math.exp(ell), math.exp(log_p + x0) * (1.0 + tau * s)
 
 
 @kernel

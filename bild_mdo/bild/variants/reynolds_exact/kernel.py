@@ -8,7 +8,8 @@ the solve begins where the offsets of the two stations inward from their
 first angles, extrapolated in ``r``, predict; from the first angle again
 where that gives no loaded root); a grid search where none gives a candidate; then the other sheets the
 path meets at the solution and the sheets that end at a fold next to it, each
-unless a Newton model of its ``Phi`` shows it cannot beat the best; finally one
+unless its ``cd/cl`` there is far above the solution's or a Newton model of its ``Phi`` shows it cannot
+beat the best; finally one
 Newton step on ``R2`` at the chosen angle.  Every bracketed solve is
 :func:`~bild_mdo.bild.variants.local_point.sheet_solve.sheet_solve` on
 :func:`sheet_value` of one sheet, whose ``state`` array records the station's
@@ -24,10 +25,10 @@ from bild_mdo.airfoil.load_path_table import X_STEP
 from bild_mdo.bild.variants.local_point.paper_kernels import paper_angle_one
 from bild_mdo.bild.variants.local_point.kernels import (
     candidates_one,
+    finish_one,
     momentum_one,
-    polish_one,
+    sheet_s,
     station_setup,
-    station_values_one,
     trail_begin,
     trail_prediction,
     trail_record,
@@ -70,18 +71,18 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     ``flow[8, n]``: the stations (:func:`~bild_mdo.bild.variants.local_point.kernels.station_setup`); the first
     angle is the paper loading's at ``start_ratio``; ``guess, first_label[n]``: a warm start (NaN, -1: none; empty
     arrays: none anywhere), the angle where the solve on sheet ``first_label`` begins; ``settings``: ``(barrier,
-    max_iter, angle_tol, root_step, start_ratio, prune_factor, fold_window, fold_margin)``; ``probes``: the
+    max_iter, angle_tol, root_step, start_ratio, prune_factor, fold_window, fold_margin, near_ratio)``; ``probes``: the
     probe steps; ``search``: the fractions of the bracket of the grid search.  Writes ``out[11, n]``: ``phi,
     x0, label, code, Phi`` (code 0 loaded, 1 unloaded, 3 overloaded, 4 outside the domain, 5 loaded past the table's
     top) and, where loaded (NaN elsewhere), the station's values
-    (:func:`~bild_mdo.bild.variants.local_point.kernels.station_values_one`).
+    (:func:`~bild_mdo.bild.variants.local_point.kernels.finish_one`).
     """
     coef, slots, cover_first, cover_last, offset, kind, end_x0, end_label, end_inward, grid, coef_ell, coef_alpha = table
     sheets = (cover_first, cover_last, offset, kind)
     x_first, nx, x_last = grid[0], int(grid[1]), grid[2]
-    barrier, max_iter, angle_tol, root_step, start_ratio, prune, window, margin = settings
+    barrier, max_iter, angle_tol, root_step, start_ratio, prune, window, margin, near_ratio = settings
     solve_settings = (barrier, max_iter, angle_tol, root_step)
-    k = slots.shape[2]
+    k = slots.shape[1]
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
     near_label = np.empty(k + end_x0.size, dtype=np.int64)
     near_x0, near_phi = np.empty(k + end_x0.size), np.empty(k + end_x0.size)
@@ -182,9 +183,19 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
                         near_label[near], near_x0[near], near_phi[near] = label, target, phi_p
                         near += 1
         best_ref = best_obj
+        s_best = math.inf
+        if near > 0:
+            _set_sheet(c, sheets, best_label)
+            covered, s_here, _ = sheet_s(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], best_x0)
+            if covered and s_here > 0.0:
+                s_best = s_here
         for m in range(near):
             phi_m = near_phi[m]
             _set_sheet(c, sheets, near_label[m])
+            # A sheet whose cd/cl where it is met exceeds the best's by more than near_ratio is no candidate.
+            covered, s_here, _ = sheet_s(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], near_x0[m])
+            if covered and s_here > near_ratio * s_best:
+                continue
             _fresh(st, near_x0[m])
             sheet_value(phi_m, st, (coef, c, barrier))
             here, slope, d_tot = st[_F], st[_SLOPE], st[_D_TOT]
@@ -223,13 +234,12 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
                     break
         if math.isfinite(best_obj) and best_obj < 0.0:
             _set_sheet(c, sheets, best_label)
-            row[1] = polish_one(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K], c[_K_TIP], c[_K_HUB],
-                                c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            values = finish_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K],
+                                c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            row[1] = values[0]
             row[0], row[2], row[3], row[4] = best_phi, best_label, 5.0 if above else 0.0, best_obj
-            values = station_values_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET],
-                                           c[_VX], c[_VT], best_phi, row[1], torque)
             for q in range(6):
-                row[5 + q] = values[q]
+                row[5 + q] = values[1 + q]
             trail_record(trail, best_label, best_phi - first, flow[3, j])
         else:
             trail_record(trail, -1, 0.0, 0.0)
