@@ -86,8 +86,9 @@ def add_verify_arguments(parser):
                           "the same folder); the default is the paper's NACA 4412")
     parser.add_argument("--section-point", default="reference", choices=("reference", "local"),
                         help="BILD's section point: 'reference' (the paper's: the max-L/D point at the reference "
-                             "station everywhere) or 'local' (each station's own point for its Reynolds number; "
-                             "slower, 0.5-2 s per design); part of the sweep's fingerprint (default: reference)")
+                             "station everywhere) or 'local' (each station's own point for its Reynolds number, "
+                             "from the airfoil's load-path table); part of the sweep's fingerprint "
+                             "(default: reference)")
     parser.add_argument("--ideal-loading", default="paper", choices=IDEAL_LOADINGS,
                         help="BILD's ideal loading: 'paper' (Eq. (22), without the derivative of Prandtl's F) or "
                              "'exact' (each annulus makes E - lambda T stationary with Prandtl's F kept: the BEM "
