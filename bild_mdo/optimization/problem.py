@@ -24,8 +24,8 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
+from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.bem.turbine_polar import TurbinePolar
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
 from bild_mdo.optimization.initial_design import (CHORD_RATIO_BOUNDS, INITIAL_DESIGNS, TWIST_LIMITS,
@@ -142,7 +142,8 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     num_radial, num_blades : int
         Stations and blades.
     polar : Polar or str
-        Airfoil polar or the name of a built-in one (``'naca4412'``).
+        Airfoil polar, or any airfoil text :func:`~bild_mdo.io.airfoil.resolve_airfoil` accepts (a built-in
+        name such as ``'naca4412'``, a NACA designation, polar files, ``'naca4412@re=2e6'``, a spanwise set).
     loss_model : {'tip_hub', 'tip', 'none'}
         Prandtl loss model of the BEM analysis.
     scaling : {'hessian', 'fixed'}
@@ -199,7 +200,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     driver = make_driver(optimizer, tol, maxiter, print_level)
 
     prob = om.Problem(reports=False)
-    polar = resolve_polar(polar)
+    polar = resolve_airfoil(polar)
     polar = TurbinePolar(polar) if rotor_type == "turbine" else polar
     group = BEMOptimizationGroup(num_nodes=1, num_radial=num_radial, num_blades=num_blades,
                                  polar=polar, loss_model=loss_model,

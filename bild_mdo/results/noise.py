@@ -18,8 +18,8 @@ from bild_mdo.acoustics.bands import NOMINAL_CENTRES, THIRD_OCTAVE_CENTRES, spl_
 from bild_mdo.acoustics.broadband_noise import BROADBAND_SOURCES
 from bild_mdo.acoustics.noise_totals import a_weight_factor
 from bild_mdo.acoustics.rotor_noise_group import BOUNDARY_LAYERS, RotorNoiseGroup, check_observers
-from bild_mdo.airfoil.builtin import resolve_polar
 from bild_mdo.atmosphere import isa
+from bild_mdo.io.airfoil import resolve_airfoil
 
 __all__ = ["MODEL", "VALIDITY", "NoiseResult", "combine_noise", "rotor_noise"]
 
@@ -245,7 +245,7 @@ def _rotor_of_analysis(result, rotor):
                for name in ("radii", "dr", "dthrust_dr", "dtorque_dr", "alpha", "inflow_speed", "phi")}
     station["chord"] = np.broadcast_to(np.asarray(rotor["chord"], dtype=float), radii.shape).copy()
     polar = rotor.get("polar")
-    polar = resolve_polar("naca4412") if polar is None else resolve_polar(polar)
+    polar = resolve_airfoil("naca4412" if polar is None else polar)
     tip_mach = np.atleast_1d(np.asarray(result.tip_mach, dtype=float))
     return node, station, int(rotor["num_blades"]), polar, tip_mach, batch
 

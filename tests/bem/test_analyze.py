@@ -98,3 +98,20 @@ def test_extreme_accepted_inputs_give_finite_numbers(case, analytic_polar, recwa
     tip_only = analyze_rotor(polar=analytic_polar, **{**case, "hub_radius": 1e-300, "loss_model": "tip"})
     assert np.isfinite(res.thrust) and res.thrust == pytest.approx(tip_only.thrust, rel=1e-9)
     assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
+
+
+def test_airfoil_text_is_read_as_design_rotor_and_the_cli_read_it(case):
+    # analyze_rotor takes the airfoil text of design_rotor and the CLI (bild_mdo.io.airfoil.resolve_airfoil): a
+    # polar frozen at one Reynolds number and a spanwise set give, bit for bit, what the polar objects they name
+    # give (the text names that polar); text that names none is one ValueError.
+    from bild_mdo.airfoil.text import sweep_polar
+
+    for text in ("naca4412@re=2e6", "0.5:analytic;1:naca4412"):
+        by_text = analyze_rotor(polar=text, **case)
+        by_object = analyze_rotor(polar=sweep_polar(text), **case)
+        assert np.isfinite(by_text.thrust) and by_text.thrust == by_object.thrust
+        np.testing.assert_array_equal(by_text.dthrust_dr, by_object.dthrust_dr)
+    # The frozen polar is not the Reynolds-dependent one (the stations run at Re 4e5-8e5 here, not 2e6).
+    assert analyze_rotor(polar="naca4412@re=2e6", **case).thrust != analyze_rotor(polar="naca4412", **case).thrust
+    with pytest.raises(ValueError, match="unknown airfoil"):
+        analyze_rotor(polar="not-an-airfoil", **case)
