@@ -8,6 +8,8 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo import validation
+from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.atmosphere import MAX_ALTITUDE, isa
 from bild_mdo.bem.analyze_inclined import check_inflow, inclined_arguments, run_inclined
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
@@ -18,7 +20,6 @@ from bild_mdo.bem.loads import SECTION_OUTPUTS
 from bild_mdo.bem.metrics import PERFORMANCE_OUTPUTS, warn_supersonic_tip
 from bild_mdo.bem.prandtl import LOSS_MODELS
 from bild_mdo.fluid import resolve_fluid
-from bild_mdo.io.airfoil import resolve_airfoil
 
 
 def station_radii(radius, hub_radius, num_radial):
@@ -142,9 +143,9 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
     num_blades : int
         Number of blades.
     polar : Polar or str
-        Airfoil polar, or any airfoil text :func:`~bild_mdo.io.airfoil.resolve_airfoil` accepts, as
-        ``design_rotor`` and the CLI do (a built-in name such as ``'naca4412'`` or ``'analytic'``, a NACA
-        designation, polar files, ``'naca4412@re=2e6'``, a spanwise set ``'0.2:naca4415;1:naca4412'``).
+        Airfoil polar, or airfoil text as :func:`~bild_mdo.airfoil.text.sweep_polar` reads it (a built-in name
+        such as ``'naca4412'`` or ``'analytic'``, a NACA designation, polar files, a polar frozen at one Reynolds
+        number ``'naca4412@re=2e6'``, a spanwise set ``'0.2:naca4415;1:naca4412'``).
     altitude : float or array_like
         Geometric altitude (m) for the ISA, 0 ... 11,000.  With ``rho`` and ``mu`` given it
         sets only the speed of sound (unless ``speed_of_sound`` is given too).
@@ -219,7 +220,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         With ``on_invalid='raise'`` and invalid stations; with ``solve_range='full'`` where no
         sign change exists; where the total torque is zero (no performance metrics).
     """
-    polar = resolve_airfoil(polar)
+    polar = sweep_polar(polar) if isinstance(polar, str) else resolve_polar(polar)
     if fluid is not None:
         if rho is not None or mu is not None or speed_of_sound is not None:
             raise ValueError("give either fluid or rho, mu (and speed_of_sound), not both")

@@ -24,8 +24,9 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
+from bild_mdo.airfoil.builtin import resolve_polar
+from bild_mdo.airfoil.text import sweep_polar
 from bild_mdo.atmosphere import isa
-from bild_mdo.io.airfoil import resolve_airfoil
 from bild_mdo.bem.turbine_polar import TurbinePolar
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
 from bild_mdo.optimization.initial_design import (CHORD_RATIO_BOUNDS, INITIAL_DESIGNS, TWIST_LIMITS,
@@ -142,7 +143,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     num_radial, num_blades : int
         Stations and blades.
     polar : Polar or str
-        Airfoil polar, or any airfoil text :func:`~bild_mdo.io.airfoil.resolve_airfoil` accepts (a built-in
+        Airfoil polar, or airfoil text as :func:`~bild_mdo.airfoil.text.sweep_polar` reads it (a built-in
         name such as ``'naca4412'``, a NACA designation, polar files, ``'naca4412@re=2e6'``, a spanwise set).
     loss_model : {'tip_hub', 'tip', 'none'}
         Prandtl loss model of the BEM analysis.
@@ -200,7 +201,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     driver = make_driver(optimizer, tol, maxiter, print_level)
 
     prob = om.Problem(reports=False)
-    polar = resolve_airfoil(polar)
+    polar = sweep_polar(polar) if isinstance(polar, str) else resolve_polar(polar)
     polar = TurbinePolar(polar) if rotor_type == "turbine" else polar
     group = BEMOptimizationGroup(num_nodes=1, num_radial=num_radial, num_blades=num_blades,
                                  polar=polar, loss_model=loss_model,

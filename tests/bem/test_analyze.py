@@ -100,15 +100,17 @@ def test_extreme_accepted_inputs_give_finite_numbers(case, analytic_polar, recwa
     assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
 
 
-def test_airfoil_text_is_read_as_design_rotor_and_the_cli_read_it(case):
-    # analyze_rotor takes the airfoil text of design_rotor and the CLI (bild_mdo.io.airfoil.resolve_airfoil): a
-    # polar frozen at one Reynolds number and a spanwise set give, bit for bit, what the polar objects they name
-    # give (the text names that polar); text that names none is one ValueError.
-    from bild_mdo.airfoil.text import sweep_polar
+def test_airfoil_text_is_read_as_the_sweep_reads_it(case):
+    # analyze_rotor takes the airfoil text of the verification sweep (bild_mdo.airfoil.text.sweep_polar): a
+    # polar frozen at one Reynolds number and a spanwise set give, bit for bit, what the polars built from their
+    # parts give (the text names that polar); text that names none is one ValueError.
+    from bild_mdo.airfoil import FixedReynoldsPolar, resolve_polar, spanwise_polar
 
-    for text in ("naca4412@re=2e6", "0.5:analytic;1:naca4412"):
+    frozen = FixedReynoldsPolar(resolve_polar("naca4412"), 2e6)
+    spanwise = spanwise_polar([(0.5, resolve_polar("analytic")), (1.0, resolve_polar("naca4412"))])
+    for text, polar in (("naca4412@re=2e6", frozen), ("0.5:analytic;1:naca4412", spanwise)):
         by_text = analyze_rotor(polar=text, **case)
-        by_object = analyze_rotor(polar=sweep_polar(text), **case)
+        by_object = analyze_rotor(polar=polar, **case)
         assert np.isfinite(by_text.thrust) and by_text.thrust == by_object.thrust
         np.testing.assert_array_equal(by_text.dthrust_dr, by_object.dthrust_dr)
     # The frozen polar is not the Reynolds-dependent one (the stations run at Re 4e5-8e5 here, not 2e6).
