@@ -29,6 +29,7 @@ from bild_mdo.bild.variants.local_point.kernels import (
     trail_record,
 )
 from bild_mdo.bild.variants.local_point.sheet_solve import (
+    _BARRIER,
     _HIGH,
     _K_HUB,
     _K_TIP,
@@ -38,8 +39,7 @@ from bild_mdo.bild.variants.local_point.sheet_solve import (
     _LOW,
     _OFFSET,
     _PAPER,
-    _PARAMS_SIZE,
-    _STATE_SIZE,
+    _SOLVE_SIZE,
     _TORQUE,
     _VT,
     _VX,
@@ -70,33 +70,33 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
     solve_settings = (barrier, max_iter, angle_tol, root_step)
     k = slots.shape[1]
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
-    st = np.zeros(_STATE_SIZE)
+    st = np.zeros(_SOLVE_SIZE)  # a solve's state, then the station's and the sheet's constants
     work = np.zeros(1)
-    c = np.zeros(_PARAMS_SIZE)
-    c[_X_FIRST], c[_TORQUE], c[_LOSS], c[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
+    st[_BARRIER] = barrier
+    st[_X_FIRST], st[_TORQUE], st[_LOSS], st[_PAPER] = x_first, 1.0 if torque else 0.0, loss, 1.0
     trail = np.zeros(6)
     for j in range(begin, end):
         row = out[:, j]
         for q in range(4, 10):
             row[q] = math.nan
         trail_begin(trail, flow, j)
-        ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, 0.0)
+        ok, st[_LOG_K], st[_K_TIP], st[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, 0.0)
         if not ok:
             trail_record(trail, -1, 0.0, 0.0)
             row[0], row[1], row[2], row[3] = 0.0, math.nan, -1.0, 4.0
             continue
-        c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
+        st[_LAM], st[_VX], st[_VT] = flow[0, j], flow[1, j], flow[2, j]
         row[0], row[1], row[2], row[3] = lo_j, math.nan, -1.0, 1.0
         # Hover: the quartic leaves the station unloaded at every cd/cl its path can reach.
-        if c[_VX] == 0.0 and c[_LAM] <= 0.5 * lowest_ratio * c[_VT]:
+        if st[_VX] == 0.0 and st[_LAM] <= 0.5 * lowest_ratio * st[_VT]:
             trail_record(trail, -1, 0.0, 0.0)
             continue
-        first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
+        first = paper_angle_one(work, st[_VX], st[_VT], st[_LAM], start_ratio)
         if not math.isfinite(first):
-            first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], lowest_ratio)
+            first = paper_angle_one(work, st[_VX], st[_VT], st[_LAM], lowest_ratio)
         first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
         best_phi, best_x0, best_s, best_label, best_x = first, math.nan, math.inf, -1, math.nan
-        x_g, tau_g = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], first, start_ratio, torque,
+        x_g, tau_g = momentum_one(st[_LOG_K], st[_K_TIP], st[_K_HUB], st[_VX], st[_VT], first, start_ratio, torque,
                                   loss)
         count = candidates_one(slots, x_first, nx, x_g, tau_g, labels, x0s, scores)
         # On the sheet of the loaded station inward, the solve begins where the offsets of the stations inward
@@ -105,10 +105,10 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
         predicted = min(max(first + offset_j, lo_j), hi_j)
         for m in range(count):
             start = predicted if labels[m] == trail_label else first
-            x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, start, x0s[m],
+            x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, st, labels[m], lo_j, hi_j, -1.0, start, x0s[m],
                                               grid, solve_settings)
             if start != first and not s < math.inf:
-                x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, first, x0s[m],
+                x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, st, labels[m], lo_j, hi_j, -1.0, first, x0s[m],
                                                   grid, solve_settings)
             if s < best_s:
                 best_phi, best_x0, best_s, best_label, best_x = x, x0_c, s, labels[m], st[_X]
@@ -123,7 +123,7 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
             for m in range(found):
                 if labels[m] == best_label or not scores[m] < best_s * (1.0 - 1e-12):
                     continue
-                x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, start_phi,
+                x, x0_c, s, _, _, _ = sheet_solve(coef, sheets, st, labels[m], lo_j, hi_j, -1.0, start_phi,
                                                   x0s[m], grid, solve_settings)
                 if s < best_s:
                     best_phi, best_x0, best_s, best_label, best_x = x, x0_c, s, labels[m], st[_X]
@@ -131,9 +131,9 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
             if not moved:
                 break
         if math.isfinite(best_s):
-            _set_sheet(c, sheets, best_label)
-            values = finish_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K],
-                                c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            _set_sheet(st, sheets, best_label)
+            values = finish_one(coef, coef_ell, coef_alpha, x_first, st[_LOW], st[_HIGH], st[_OFFSET], st[_LOG_K],
+                                st[_K_TIP], st[_K_HUB], st[_VX], st[_VT], best_phi, best_x0, torque, loss)
             row[1] = values[0]
             row[0], row[2], row[3] = best_phi, best_label, 5.0 if row[1] > x_last - X_STEP else 0.0
             for q in range(6):

@@ -34,6 +34,7 @@ from bild_mdo.bild.variants.local_point.kernels import (
     trail_record,
 )
 from bild_mdo.bild.variants.local_point.sheet_solve import (
+    _BARRIER,
     _COVERED,
     _D_TOT,
     _F,
@@ -44,10 +45,9 @@ from bild_mdo.bild.variants.local_point.sheet_solve import (
     _LOSS,
     _OBJECTIVE,
     _OFFSET,
-    _PARAMS_SIZE,
     _RATE,
     _SLOPE,
-    _STATE_SIZE,
+    _SOLVE_SIZE,
     _TORQUE,
     _VT,
     _VX,
@@ -86,10 +86,10 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
     near_label = np.empty(k + end_x0.size, dtype=np.int64)
     near_x0, near_phi = np.empty(k + end_x0.size), np.empty(k + end_x0.size)
-    st = np.zeros(_STATE_SIZE)
+    st = np.zeros(_SOLVE_SIZE)  # a solve's state, then the station's and the sheet's constants
     work = np.zeros(1)
-    c = np.zeros(_PARAMS_SIZE)
-    c[_X_FIRST], c[_TORQUE], c[_LOSS] = x_first, 1.0 if torque else 0.0, loss
+    st[_BARRIER] = barrier
+    st[_X_FIRST], st[_TORQUE], st[_LOSS] = x_first, 1.0 if torque else 0.0, loss
     trail = np.zeros(6)
     warm_any = guess.size > 0
     for j in range(begin, end):
@@ -97,13 +97,13 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
         for q in range(5, 11):
             row[q] = math.nan
         trail_begin(trail, flow, j)
-        ok, c[_LOG_K], c[_K_TIP], c[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, start_ratio)
+        ok, st[_LOG_K], st[_K_TIP], st[_K_HUB], lo_j, hi_j = station_setup(flow, j, num_blades, loss, start_ratio)
         if not ok:
             trail_record(trail, -1, 0.0, 0.0)
             row[0], row[1], row[2], row[3], row[4] = 0.0, math.nan, -1.0, 4.0, math.inf
             continue
-        c[_LAM], c[_VX], c[_VT] = flow[0, j], flow[1, j], flow[2, j]
-        first = paper_angle_one(work, c[_VX], c[_VT], c[_LAM], start_ratio)
+        st[_LAM], st[_VX], st[_VT] = flow[0, j], flow[1, j], flow[2, j]
+        first = paper_angle_one(work, st[_VX], st[_VT], st[_LAM], start_ratio)
         first = min(max(first, lo_j), hi_j) if math.isfinite(first) else lo_j
         guess_j = guess[j] if warm_any else math.nan
         warm, warm_label = (guess_j, first_label[j]) if math.isfinite(guess_j) else (first, -1)
@@ -116,7 +116,7 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
         best_x, best_rate = math.nan, math.nan
         overloaded, above = False, False
         tried = 0
-        x_g, tau_g = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], first, start_ratio, torque,
+        x_g, tau_g = momentum_one(st[_LOG_K], st[_K_TIP], st[_K_HUB], st[_VX], st[_VT], first, start_ratio, torque,
                                   loss)
         count = candidates_one(slots, x_first, nx, x_g, tau_g, labels, x0s, scores)
         # The sheet of least cd/cl at the first angle; the next one where it gave no load.
@@ -133,11 +133,11 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
             # A warm start changes only where the solve on the station's last sheet begins, not which sheets are
             # tried: the design stays the one a cold start finds.
             start = warm if labels[m] == warm_label else first
-            x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0,
+            x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, st, labels[m], lo_j, hi_j, -1.0,
                                                                    start, x0s[m], grid, solve_settings)
             if start != first and not obj < 0.0:
                 # The predicted start led to no loaded root: the solve from the first angle, as without it.
-                x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j,
+                x, x0_c, obj, valid, converged, residual = sheet_solve(coef, sheets, st, labels[m], lo_j, hi_j,
                                                                        -1.0, first, x0s[m], grid, solve_settings)
             if obj < best_obj:
                 best_phi, best_x0, best_obj, best_label = x, x0_c, obj, labels[m]
@@ -151,11 +151,11 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
         if not math.isfinite(best_obj) and not overloaded:
             for fraction in search:
                 phi_g = lo_j + fraction * (hi_j - lo_j)
-                x_s, tau_s = momentum_one(c[_LOG_K], c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], phi_g, start_ratio,
+                x_s, tau_s = momentum_one(st[_LOG_K], st[_K_TIP], st[_K_HUB], st[_VX], st[_VT], phi_g, start_ratio,
                                           torque, loss)
                 found = candidates_one(slots, x_first, nx, x_s, tau_s, labels, x0s, scores)
                 for m in range(found):
-                    x, x0_c, obj, valid, _, _ = sheet_solve(coef, sheets, c, st, labels[m], lo_j, hi_j, -1.0, phi_g,
+                    x, x0_c, obj, valid, _, _ = sheet_solve(coef, sheets, st, labels[m], lo_j, hi_j, -1.0, phi_g,
                                                             x0s[m], grid, solve_settings)
                     if obj < best_obj:
                         best_phi, best_x0, best_obj, best_label = x, x0_c, obj, labels[m]
@@ -185,19 +185,19 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
         best_ref = best_obj
         s_best = math.inf
         if near > 0:
-            _set_sheet(c, sheets, best_label)
-            covered, s_here, _ = sheet_s(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], best_x0)
+            _set_sheet(st, sheets, best_label)
+            covered, s_here, _ = sheet_s(coef, x_first, st[_LOW], st[_HIGH], st[_OFFSET], best_x0)
             if covered and s_here > 0.0:
                 s_best = s_here
         for m in range(near):
             phi_m = near_phi[m]
-            _set_sheet(c, sheets, near_label[m])
+            _set_sheet(st, sheets, near_label[m])
             # A sheet whose cd/cl where it is met exceeds the best's by more than near_ratio is no candidate.
-            covered, s_here, _ = sheet_s(coef, x_first, c[_LOW], c[_HIGH], c[_OFFSET], near_x0[m])
+            covered, s_here, _ = sheet_s(coef, x_first, st[_LOW], st[_HIGH], st[_OFFSET], near_x0[m])
             if covered and s_here > near_ratio * s_best:
                 continue
             _fresh(st, near_x0[m])
-            sheet_value(phi_m, st, (coef, c, barrier))
+            sheet_value(phi_m, st, coef)
             here, slope, d_tot = st[_F], st[_SLOPE], st[_D_TOT]
             if not (st[_COVERED] > 0.0 and d_tot > 0.0):
                 continue
@@ -210,7 +210,7 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
             step = min(max(step, 0.001), 0.15) if (math.isfinite(step) and slope > 0.0) else probes[0]
             far = min(max(phi_m + 2.0 * direction * step, lo_j), hi_j)
             f_lo = -_sign(here) if far < phi_m else _sign(here)
-            x, x0_c, obj, valid, _, _ = sheet_solve(coef, sheets, c, st, near_label[m], min(phi_m, far),
+            x, x0_c, obj, valid, _, _ = sheet_solve(coef, sheets, st, near_label[m], min(phi_m, far),
                                                     max(phi_m, far), f_lo, phi_m + direction * step, x0_here, grid,
                                                     solve_settings)
             if obj < best_obj:
@@ -222,10 +222,10 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
             for size in probes:
                 probe = min(max(phi_m + direction * (size + 2.0 * step), lo_j), hi_j)
                 _fresh(st, x0_here)
-                value = sheet_value(probe, st, (coef, c, barrier))[0]
+                value = sheet_value(probe, st, coef)[0]
                 if value != -1.0 and _sign(value) != _sign(here):
                     f_lo = -_sign(here) if probe < phi_m else _sign(here)
-                    x, x0_c, obj, _, _, _ = sheet_solve(coef, sheets, c, st, near_label[m], min(phi_m, probe),
+                    x, x0_c, obj, _, _, _ = sheet_solve(coef, sheets, st, near_label[m], min(phi_m, probe),
                                                         max(phi_m, probe), f_lo, phi_m, x0_here, grid, solve_settings)
                     if obj < best_obj:
                         best_phi, best_x0, best_obj, best_label = x, x0_c, obj, near_label[m]
@@ -233,9 +233,9 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
                 if value == -1.0 or probe == edge:
                     break
         if math.isfinite(best_obj) and best_obj < 0.0:
-            _set_sheet(c, sheets, best_label)
-            values = finish_one(coef, coef_ell, coef_alpha, x_first, c[_LOW], c[_HIGH], c[_OFFSET], c[_LOG_K],
-                                c[_K_TIP], c[_K_HUB], c[_VX], c[_VT], best_phi, best_x0, torque, loss)
+            _set_sheet(st, sheets, best_label)
+            values = finish_one(coef, coef_ell, coef_alpha, x_first, st[_LOW], st[_HIGH], st[_OFFSET], st[_LOG_K],
+                                st[_K_TIP], st[_K_HUB], st[_VX], st[_VT], best_phi, best_x0, torque, loss)
             row[1] = values[0]
             row[0], row[2], row[3], row[4] = best_phi, best_label, 5.0 if above else 0.0, best_obj
             for q in range(6):
