@@ -107,3 +107,24 @@ def test_st1_closed_form():
     """Eq. (31) at the report's four Mach numbers gives the St_1 of its Sec. 5.1.1 (0.081, 0.071, 0.059, 0.051)."""
     np.testing.assert_allclose(bpm.peak_strouhal_1(np.array([0.093, 0.116, 0.163, 0.209])),
                                [0.081, 0.071, 0.059, 0.051], atol=2.5e-3)
+
+
+@pytest.mark.parametrize("name", ["shape_a_min", "shape_a_max", "shape_b_min", "shape_b_max", "shape_g1",
+                                  "shape_g2"])
+def test_pure_piecewise_evaluates_each_branch_at_its_own_points_only(name, monkeypatch):
+    """The fits whose branches depend on their argument alone (``piecewise(..., pure=True)``) give, for arrays,
+    the values of the general path (every branch everywhere, then selected) bit for bit: real and complex
+    (complex step), on the edges (the lower branch) and at NaN (the first branch at its fill point, as the
+    general path gives)."""
+    from bild_mdo.acoustics.bpm import jet_math, laminar_vortex_shedding, turbulent_trailing_edge
+
+    function = getattr(bpm, name)
+    x = np.random.default_rng(3).uniform(1e-3, 5.0, (6, 3, 40))
+    x[0, 0, :8] = [np.nan, 0.204, 0.244, 0.13, 0.145, 0.8545, 1.17, 3.0889]
+    fast = [function(x), function(x + 1e-30j)]
+    general = jet_math.piecewise
+    for module in (turbulent_trailing_edge, laminar_vortex_shedding):
+        monkeypatch.setattr(module, "piecewise", lambda x, edges, branches, pure=False: general(x, edges, branches))
+    for values, argument in zip(fast, (x, x + 1e-30j)):
+        np.testing.assert_array_equal(values, function(argument))
+        assert values.dtype == argument.dtype and values.shape == x.shape

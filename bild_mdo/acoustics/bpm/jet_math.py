@@ -88,7 +88,7 @@ def where(condition, a, b):
     return Jet(result, {k: np.where(condition, da.get(k, 0.0), db.get(k, 0.0)) for k in set(da) | set(db)})
 
 
-def piecewise(x, edges, branches):
+def piecewise(x, edges, branches, pure=False):
     """Evaluate a piecewise fit of ``x``: ``branches[i]`` on ``edges[i-1] < Re x <= edges[i]``.
 
     Each branch is evaluated on ``x`` replaced, outside its own interval, by a point inside it (the
@@ -104,11 +104,16 @@ def piecewise(x, edges, branches):
         belongs to the lower branch.
     branches : sequence of callable
         ``branch(x) -> array or Jet``.
+    pure : bool
+        Every branch is a function of ``x`` alone, elementwise (no other array inside): for an array ``x``
+        (not a jet) each branch is then evaluated only at the points of its own interval.
     """
     xr = real_value(x)
     edges = [np.real(e) for e in edges]
     lower = [-np.inf] + edges
     upper = edges + [np.inf]
+    if pure and not isinstance(x, Jet) and len(branches) > 1 and all(np.ndim(e) == 0 for e in edges):
+        return _piecewise_points(x, xr, lower, upper, branches)
     result = None
     for i, (lo, hi, branch) in enumerate(zip(lower, upper, branches)):
         inside = (xr > lo) & (xr <= hi)
@@ -119,3 +124,20 @@ def piecewise(x, edges, branches):
             out = branch(where(inside, x, fill))
         result = out if result is None else where(inside, out, result)
     return result
+
+
+def _piecewise_points(x, xr, lower, upper, branches):
+    """:func:`piecewise` of an array ``x`` with pure branches: each evaluated at its own points only (the same
+    values, elementwise); a point in no interval (NaN) gets the first branch at its fill point, as there."""
+    x = np.asarray(x)
+    out = np.empty(x.shape, dtype=np.result_type(x, float))
+    covered = np.zeros(x.shape, dtype=bool)
+    for lo, hi, branch in zip(lower, upper, branches):
+        inside = (xr > lo) & (xr <= hi)
+        if inside.any():
+            out[inside] = branch(x[inside])
+            covered |= inside
+    if not covered.all():
+        missing = ~covered
+        out[missing] = branches[0](np.full(np.count_nonzero(missing), upper[0], dtype=out.dtype))
+    return out

@@ -43,7 +43,7 @@ def shape_g1(e):
         log_e(lambda le: 98.409 * le + 2.0),
         log_e(lambda le: sqrt(2.484 - 506.25 * le * le) - 5.076),
         log_e(lambda le: -98.409 * le + 2.0),
-        log_e(lambda le: -39.8 * le - 11.12)])
+        log_e(lambda le: -39.8 * le - 11.12)], pure=True)
 
 
 def reference_reynolds(alpha_deg):
@@ -61,7 +61,7 @@ def shape_g2(d):
         log_d(lambda ld: 65.188 * ld + 9.125),
         log_d(lambda ld: -114.052 * ld * ld),
         log_d(lambda ld: -65.188 * ld + 9.125),
-        log_d(lambda ld: -77.852 * ld + 15.328)])
+        log_d(lambda ld: -77.852 * ld + 15.328)], pure=True)
 
 
 def shape_g3(alpha_deg):

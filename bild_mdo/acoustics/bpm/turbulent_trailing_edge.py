@@ -46,28 +46,28 @@ def shape_a_min(a):
     """``A_min(a)`` (Eq. 35)."""
     return piecewise(a, [0.204, 0.244], [lambda x: sqrt(67.552 - 886.788 * x * x) - 8.219,
                                          lambda x: -32.665 * x + 3.981,
-                                         lambda x: ((-142.795 * x + 103.656) * x - 57.757) * x + 6.006])
+                                         lambda x: ((-142.795 * x + 103.656) * x - 57.757) * x + 6.006], pure=True)
 
 
 def shape_a_max(a):
     """``A_max(a)`` (Eq. 36)."""
     return piecewise(a, [0.13, 0.321], [lambda x: sqrt(67.552 - 886.788 * x * x) - 8.219,
                                         lambda x: -15.901 * x + 1.098,
-                                        lambda x: ((-4.669 * x + 3.491) * x - 16.699) * x + 1.149])
+                                        lambda x: ((-4.669 * x + 3.491) * x - 16.699) * x + 1.149], pure=True)
 
 
 def shape_b_min(b):
     """``B_min(b)`` (Eq. 41)."""
     return piecewise(b, [0.13, 0.145], [lambda x: sqrt(16.888 - 886.788 * x * x) - 4.109,
                                         lambda x: -83.607 * x + 8.138,
-                                        lambda x: ((-817.810 * x + 355.210) * x - 135.024) * x + 10.619])
+                                        lambda x: ((-817.810 * x + 355.210) * x - 135.024) * x + 10.619], pure=True)
 
 
 def shape_b_max(b):
     """``B_max(b)`` (Eq. 42)."""
     return piecewise(b, [0.10, 0.187], [lambda x: sqrt(16.888 - 886.788 * x * x) - 4.109,
                                         lambda x: -31.330 * x + 1.854,
-                                        lambda x: ((-80.541 * x + 44.174) * x - 39.381) * x + 2.344])
+                                        lambda x: ((-80.541 * x + 44.174) * x - 39.381) * x + 2.344], pure=True)
 
 
 def _reynolds_blend(reynolds, low, amplitude, high):
