@@ -17,7 +17,7 @@ from bild_mdo.io.geometry import LENGTH_UNITS
 from bild_mdo.io.qprop import write_qprop
 from bild_mdo.plots.blade import plot_blade
 from bild_mdo.fluid import FLUID_HELP, fluid_from_text
-from bild_mdo.results.design import UnloadedStationsWarning, design_rotor
+from bild_mdo.results.design import ReferenceChordWarning, UnloadedStationsWarning, design_rotor
 
 #: One-line help of the subcommand.
 HELP = "design ideal rotor blades with the BILD method (paper Alg. 1)"
@@ -200,6 +200,7 @@ def run_design(args, out):
     with warnings.catch_warnings():
         # The command says what is wrong with zero-chord stations itself (below), in its own words.
         warnings.simplefilter("ignore", UnloadedStationsWarning)
+        warnings.simplefilter("ignore", ReferenceChordWarning)  # the summary's notes say it
         result = design_rotor(**speed, **sizing, num_blades=args.num_blades, airfoil=polar,
                               num_radial=num_radial, loss_model=args.loss_model, chord_form=args.chord_form,
                               root_chord_correction=args.root_chord_correction, section_point=args.section_point,

@@ -39,11 +39,12 @@ from bild_mdo.bild.problem import bild_problem
 from bild_mdo.constants import RPM_TO_REV_PER_S
 from bild_mdo.fluid import fluid_arrays, resolve_fluid
 from bild_mdo.io.airfoil import resolve_airfoil
+from bild_mdo.results import tables
 from bild_mdo.results.design_analysis import analyze_designs
 from bild_mdo.results.design_result import (DISTRIBUTION_UNITS, DISTRIBUTIONS, INPUT_UNITS, NODE_OUTPUT_UNITS,
                                             ON_INFEASIBLE, OPTIONAL_OUTPUTS, DesignResult)
 
-__all__ = ["DesignResult", "UnloadedStationsWarning", "design_rotor"]
+__all__ = ["DesignResult", "ReferenceChordWarning", "UnloadedStationsWarning", "design_rotor"]
 
 #: Largest helical tip Mach number a design is attempted at: far past the sonic tip, where the blade-element
 #: polar and momentum theory already fail (a warning from 1 on); beyond it the inputs are a mistake (rpm in rad/s?).
@@ -52,6 +53,22 @@ MAX_TIP_MACH = 3.0
 
 class UnloadedStationsWarning(UserWarning):
     """A design leaves stations unloaded (zero chord): its ideal loading carries nothing there."""
+
+
+class ReferenceChordWarning(UserWarning):
+    """A local-point design whose blade has not ``ref_chord`` at ``r_ref``: the reference state's sheet is not the
+    one the blade has there at the design's lambda (:func:`bild_mdo.results.tables.reference_mismatch`)."""
+
+
+def _warn_reference(result, is_batch):
+    """One :class:`ReferenceChordWarning` naming the designs whose blade has not ``ref_chord`` at ``r_ref``."""
+    mismatch = tables.reference_mismatches(result.values)
+    designs = [] if mismatch is None else np.flatnonzero(mismatch & result.feasible)
+    if len(designs):
+        which = f"{len(designs)} design(s) (the first: design {designs[0]})" if is_batch else "the design"
+        warnings.warn(f"{which}: the blade has not ref_chord at r_ref (the blade there is on another branch of the "
+                      "section point at this lambda; it is the blade of its own thrust): ask for a thrust or another "
+                      "ref_chord; result.summary() says more", ReferenceChordWarning, stacklevel=3)
 
 
 def _check_tip_mach(values, input_mode, fluid=None):
@@ -89,13 +106,15 @@ def _warn_unloaded(chord, feasible, radial_fractions, is_batch):
 
 
 def _model_outputs(prob):
-    """``(name, value)`` of every output the result copies; the optional ones only where the model has them."""
+    """``(name, value)`` of every output the result copies; the optional ones only where the model has them (the
+    model's promoted outputs looked up once per problem: a failed ``get_val`` costs about a millisecond)."""
+    present = getattr(prob, "_bild_mdo_outputs", None)
+    if present is None:
+        meta = prob.model.get_io_metadata(iotypes="output", metadata_keys=[])
+        present = prob._bild_mdo_outputs = {value["prom_name"] for value in meta.values()}
     for name, units in {**DISTRIBUTION_UNITS, **NODE_OUTPUT_UNITS}.items():
-        try:
+        if name in present or name not in OPTIONAL_OUTPUTS:
             yield name, np.array(prob.get_val(name, units=units))
-        except KeyError:
-            if name not in OPTIONAL_OUTPUTS:
-                raise
 
 
 def station_reynolds(outputs, values, polar):
@@ -327,4 +346,5 @@ def design_rotor(v_axial=None, advance_ratio=None, rpm=800.0, radius=1.5, hub_ra
                           root_chord_correction=root_chord_correction, polar=polar, is_batch=True,
                           feasible=~infeasible, status=prob.model.feasibility.status(),
                           section_point=section_point, ideal_loading=ideal_loading, fluid=fluid)
+    _warn_reference(result, is_batch)
     return result if is_batch else result[0]

@@ -30,8 +30,9 @@ DISTRIBUTION_UNITS = {
 }
 
 #: Outputs a result holds only where the model has them (the local Mach number is new in the groups; the
-#: sheet of each station's section point only with ``section_point='local'``).
-OPTIONAL_OUTPUTS = ("mach", "tip_mach", "section_branch")
+#: sheet of each station's section point and of the reference state only with ``section_point='local'``, the
+#: sheet a station at r_ref takes only with the Reynolds-aware exact loading).
+OPTIONAL_OUTPUTS = ("mach", "tip_mach", "section_branch", "section_branch_ref", "station_branch_ref")
 
 #: Distributions design_rotor adds to the model's: the chord Reynolds number ``rho W0 c / mu`` of every station
 #: (``W0 = sqrt(V_x**2 + (Omega r)**2)``, the BEM convention; 0 where the chord is 0) and whether it lies
@@ -52,7 +53,8 @@ INPUT_UNITS = {
 NODE_OUTPUT_UNITS = {
     **{metric.name: metric.units for metric in METRICS},
     "ideal_loading_constant": "m/s", "alpha_star": "rad", "cl_star": None, "cd_star": None, "reynolds_ref": None,
-    "rho": "kg/m**3", "mu": "Pa*s", "hub_radius": "m", "ref_radius": "m",
+    "rho": "kg/m**3", "mu": "Pa*s", "hub_radius": "m", "ref_radius": "m", "section_branch_ref": None,
+    "station_branch_ref": None,
 }
 
 DISTRIBUTIONS = ("radii", "radial_fractions") + tuple(name for name in DISTRIBUTION_UNITS if name != "radii") + tuple(

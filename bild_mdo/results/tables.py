@@ -222,6 +222,48 @@ def _fractions(design, stations):
     return ", ".join(f"{design.radial_fractions[i]:.3f}" for i in stations)
 
 
+def reference_mismatches(values):
+    """Per design of ``values`` (a result's arrays), whether the blade has not ``ref_chord`` at ``r_ref`` (None
+    without the local section point): the reference state's sheet (``section_branch_ref``) is not the one a
+    station at ``r_ref`` takes at the design's lambda (``station_branch_ref``, the Reynolds-aware exact loading),
+    or, with the paper loading, not the sheet of either station next to ``r_ref``; the blade there then carries
+    another load and chord.  A reference state in the Reynolds gap (sheet -1) is not checked."""
+    ref_sheet = values.get("section_branch_ref")
+    if ref_sheet is None:
+        return None
+    ref_sheet = np.atleast_1d(ref_sheet)
+    station_sheet = values.get("station_branch_ref")
+    if station_sheet is not None:
+        station_sheet = np.atleast_1d(station_sheet)
+        return (ref_sheet >= 0) & (station_sheet >= -1) & (station_sheet != ref_sheet)
+    branch, radii = np.atleast_2d(values["section_branch"]), np.atleast_2d(values["radii"])
+    after = np.sum(radii < np.atleast_1d(values["ref_radius"])[:, None], axis=1)
+    rows = np.arange(branch.shape[0])[:, None]
+    near = np.clip(after[:, None] + np.array([-1, 0]), 0, branch.shape[1] - 1)
+    return (ref_sheet >= 0) & ~np.any(branch[rows, near] == ref_sheet[:, None], axis=1)
+
+
+def reference_mismatch(design):
+    """The note for a design whose blade has not ``ref_chord`` at ``r_ref`` (:func:`reference_mismatches`), or
+    None."""
+    mismatch = reference_mismatches(design.values)
+    if mismatch is None or not mismatch[0]:
+        return None
+    ref_sheet, station_sheet = int(design.values["section_branch_ref"]), design.values.get("station_branch_ref")
+    if station_sheet is not None:
+        taken = ("a station at r_ref leaves it unloaded" if station_sheet < 0
+                 else f"a station at r_ref takes sheet {int(station_sheet)}, of lower F (e - lambda t)")
+    else:
+        near = np.searchsorted(design.radii, design.ref_radius) + np.array([-1, 0])
+        sheets = np.unique(np.asarray(design.values["section_branch"])[np.clip(near, 0, design.radii.size - 1)])
+        taken = "the stations next to r_ref take sheet(s) " + ", ".join(str(int(b)) for b in sheets)
+    chord = float(np.interp(design.ref_radius, design.radii, design.chord))
+    return (f"  ref_chord is not the blade's chord at r_ref: the reference state (c_ref {design.ref_chord:.4g} m, "
+            f"Re_ref {design.reynolds_ref:.3g}, sheet {ref_sheet}) is not the state the blade has there at this "
+            f"lambda ({taken}); the blade there has a chord of about {chord:.4g} m (interpolated). It is the "
+            f"blade of its own thrust; for a blade with c_ref at r_ref ask for a thrust (thrust=) or another ref_chord")
+
+
 def design_notes(design):
     """What a reader of one design should know beyond its numbers (empty when there is nothing):
 
@@ -229,7 +271,8 @@ def design_notes(design):
     * with the local section point, jumps: adjacent loaded stations on different sheets of the load-path table
       (the two minima of C_d/C_l along the path are nearly equal there, and the lower is taken), where chord
       and twist change by more than the ideal loading's smooth variation;
-    * unloaded stations (zero chord) between loaded ones.
+    * unloaded stations (zero chord) between loaded ones;
+    * a local-point design whose blade has not ``ref_chord`` at ``r_ref`` (:func:`reference_mismatch`).
     """
     if getattr(design, "status", "ok") != "ok":
         return []
@@ -249,6 +292,9 @@ def design_notes(design):
                  else "at the hub" if np.all(unloaded < first) else "at the hub, the tip or between loaded ones")
         notes.append(f"  {unloaded.size} unloaded station(s) (zero chord) {where}, at r/R "
                      f"{_fractions(design, unloaded)}: the ideal loading carries nothing there at this lambda")
+    mismatch = reference_mismatch(design)
+    if mismatch is not None:
+        notes.append(mismatch)
     branch = design.values.get("section_branch")
     if branch is not None:
         both = loaded[:-1] & loaded[1:]

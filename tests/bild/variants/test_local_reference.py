@@ -114,3 +114,43 @@ def test_a_chord_below_the_lightest_ideal_load_is_infeasible():
     assert np.sum(same) >= 20
     np.testing.assert_allclose(at_r_ref.phi[same], solution.phi[same], rtol=0.0, atol=1e-10)
     assert np.all(prob.model.feasibility.light[light])
+
+
+@pytest.mark.parametrize("ideal_loading", ["exact", "paper"])
+@pytest.mark.parametrize("ref_chord", [0.0047, 0.009])
+def test_a_blade_without_ref_chord_at_r_ref_is_named(ref_chord, ideal_loading):
+    """Invariant of both local-point variants: a station placed at r_ref takes the reference state, so the blade
+    has ref_chord there.  With 12 stations from 0.2 R a station sits at r_ref = R/2, where a consistent design's
+    chord is ref_chord to round-off (test_consistent_designs_have_ref_chord_at_r_ref).  A small two-blade hover
+    rotor (R = 0.3 m, 6000 rpm) at these chords has a reference state (Re_ref 3e4-6e4) on another sheet than the
+    state a station at r_ref takes at that lambda (with the exact loading: of lower F (e - lambda t)): its blade
+    has another chord there (measured 0.38 and 0.0195 m exact, 0.043 and 0.019 m paper loading), and the result
+    says so (a warning, the notes; station_branch_ref with the exact loading)."""
+    from bild_mdo import design_rotor
+    from bild_mdo.results.design import ReferenceChordWarning
+
+    with pytest.warns(ReferenceChordWarning, match="has not ref_chord at r_ref"):
+        design = design_rotor(radius=0.3, rpm=6000, v_axial=0.0, num_blades=2, ref_chord=ref_chord, num_radial=12,
+                              section_point="local", ideal_loading=ideal_loading, bem_analysis=False)
+    assert design.radii[4] == pytest.approx(design.ref_radius, rel=1e-12)
+    assert abs(design.chord[4] / ref_chord - 1.0) > 0.5
+    if ideal_loading == "exact":
+        assert design.values["station_branch_ref"] != design.values["section_branch_ref"]
+    assert "ref_chord is not the blade's chord at r_ref" in design.summary()
+
+
+@pytest.mark.parametrize("ideal_loading", ["exact", "paper"])
+@pytest.mark.parametrize("radius, v_axial", [(1.0, 20.0), (1.5, 0.0)])
+def test_consistent_designs_have_ref_chord_at_r_ref(radius, v_axial, ideal_loading, recwarn):
+    """The same invariant where it holds (the paper's sweep: 800 rpm, three blades, c_ref 0.15 m): the chord of the
+    station at r_ref is ref_chord to 1e-12, the sheets agree, and nothing is flagged."""
+    from bild_mdo import design_rotor
+    from bild_mdo.results.design import ReferenceChordWarning
+
+    design = design_rotor(radius=radius, rpm=800, v_axial=v_axial, num_blades=3, ref_chord=0.15, num_radial=12,
+                          section_point="local", ideal_loading=ideal_loading, bem_analysis=False)
+    assert design.chord[4] == pytest.approx(0.15, rel=1e-12)
+    if ideal_loading == "exact":
+        assert design.values["station_branch_ref"] == design.values["section_branch_ref"]
+    assert not [w for w in recwarn if issubclass(w.category, ReferenceChordWarning)]
+    assert "ref_chord is not" not in design.summary()

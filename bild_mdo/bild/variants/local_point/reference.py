@@ -66,7 +66,9 @@ class LocalReferenceComp(om.ExplicitComponent):
     Outputs
     -------
     phi_ref[nn] (rad), alpha_star_ref[nn] (rad), cl_star_ref[nn], cd_star_ref[nn], reynolds_ref[nn],
-    load_reynolds_ref[nn], section_branch_ref[nn] (-1 in the Reynolds gap), ideal_loading_constant[nn] (m/s)
+    load_reynolds_ref[nn], section_branch_ref[nn] (-1 in the Reynolds gap), ideal_loading_constant[nn] (m/s),
+    station_branch_ref[nn] (exact loading: the sheet a station at ``r_ref`` takes at that lambda, -1 unloaded, -2
+    not checked)
     """
 
     def initialize(self):
@@ -93,6 +95,9 @@ class LocalReferenceComp(om.ExplicitComponent):
         self._output_names = ["phi_ref", *_POINT, "reynolds_ref", "load_reynolds_ref"]
         if self.options["ideal_loading"] == "exact":
             add_outputs(self, ("ideal_loading_constant",))
+            self.add_output("station_branch_ref", val=np.zeros(nn), units=None,
+                            desc="sheet a station at r_ref takes at the reference lambda (-1 unloaded, -2 not "
+                                 "checked); another than section_branch_ref: the blade has not ref_chord there")
             self._output_names.append("ideal_loading_constant")
         self._wrt = [name for name in _INPUT_KEYS if name not in ("radius", "hub_radius")
                      or name in loss_inputs(self.options["loss_model"])]
@@ -138,7 +143,23 @@ class LocalReferenceComp(om.ExplicitComponent):
                               {"ref_chord [m]": ref.chord, "Re_ref": re_ref,
                                "lambda [m/s]": values["ideal_loading_constant"]}, light=True)
             self._cache["lam_failed"] = failed | light | ~solution.ok
+            self._cache["station_branch"] = self._station_branch(ref, solution, values, ~self._cache["lam_failed"])
         return self._cache
+
+    def _station_branch(self, ref, solution, values, candidates):
+        """The sheet a station at ``r_ref`` takes with the reference state's lambda (the stations' own solve, the
+        Reynolds-aware exact loading's; -1 unloaded), where the reference state lies on the table (``candidates``);
+        -2 elsewhere (the Reynolds gap, an infeasible node).  Where it is not the reference state's sheet, that
+        station's state has the lower ``Phi``, another chord and another load, so the blade does not have
+        ``ref_chord`` at ``r_ref`` (the design result's notes say so)."""
+        from bild_mdo.bild.variants.reynolds_exact.solve import solve_stations
+
+        branch = np.full(ref.r.size, -2.0)
+        lam = values["ideal_loading_constant"]
+        at = np.flatnonzero(candidates & solution.ok & solution.on_table & np.isfinite(lam))
+        if at.size:
+            branch[at] = solve_stations(self.table, station_flow(take_reference(ref, at))._replace(lam=lam[at])).label
+        return branch
 
     def _below_lightest_load(self, ref, re_ref, solution, values):
         """Nodes whose reference state is no ideal load of a station at ``r_ref`` at its own lambda (exact
@@ -281,6 +302,8 @@ class LocalReferenceComp(om.ExplicitComponent):
         for name, value in result.items():
             outputs[name] = value
         outputs["section_branch_ref"] = np.where(solution.on_table, solution.label, -1).astype(float)
+        if "station_branch" in cache:
+            outputs["station_branch_ref"] = cache["station_branch"]
 
     def compute_partials(self, inputs, partials):
         cache = self._solve(inputs)

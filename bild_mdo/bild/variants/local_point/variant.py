@@ -37,7 +37,7 @@ class LocalPointVariant(BILDVariant):
         outputs = ["phi_ref", "alpha_star_ref", "cl_star_ref", "cd_star_ref", "reynolds_ref", "load_reynolds_ref",
                    "section_branch_ref"]
         if self.ideal_loading == "exact":
-            outputs.append("ideal_loading_constant")
+            outputs += ["ideal_loading_constant", "station_branch_ref"]
         g.add_subsystem("reference_point", LocalReferenceComp(**w.node, **self._options(),
                                                               ideal_loading=self.ideal_loading),
                         promotes_inputs=["v_axial", "v_theta_ref", "ref_radius", "ref_chord", "radius", "hub_radius",
