@@ -236,11 +236,16 @@ def reference_mismatches(values):
     if station_sheet is not None:
         station_sheet = np.atleast_1d(station_sheet)
         return (ref_sheet >= 0) & (station_sheet >= -1) & (station_sheet != ref_sheet)
+    return (ref_sheet >= 0) & ~np.any(_sheets_next_to_reference(values) == ref_sheet[:, None], axis=1)
+
+
+def _sheets_next_to_reference(values):
+    """``[nn, 2]``: the sheets of the two stations next to ``r_ref`` (the outermost one inward of it and the
+    next one out, clipped to the blade)."""
     branch, radii = np.atleast_2d(values["section_branch"]), np.atleast_2d(values["radii"])
     after = np.sum(radii < np.atleast_1d(values["ref_radius"])[:, None], axis=1)
-    rows = np.arange(branch.shape[0])[:, None]
     near = np.clip(after[:, None] + np.array([-1, 0]), 0, branch.shape[1] - 1)
-    return (ref_sheet >= 0) & ~np.any(branch[rows, near] == ref_sheet[:, None], axis=1)
+    return branch[np.arange(branch.shape[0])[:, None], near]
 
 
 def reference_mismatch(design):
@@ -254,8 +259,7 @@ def reference_mismatch(design):
         taken = ("a station at r_ref leaves it unloaded" if station_sheet < 0
                  else f"a station at r_ref takes sheet {int(station_sheet)}, of lower F (e - lambda t)")
     else:
-        near = np.searchsorted(design.radii, design.ref_radius) + np.array([-1, 0])
-        sheets = np.unique(np.asarray(design.values["section_branch"])[np.clip(near, 0, design.radii.size - 1)])
+        sheets = np.unique(_sheets_next_to_reference(design.values))
         taken = "the stations next to r_ref take sheet(s) " + ", ".join(str(int(b)) for b in sheets)
     chord = float(np.interp(design.ref_radius, design.radii, design.chord))
     return (f"  ref_chord is not the blade's chord at r_ref: the reference state (c_ref {design.ref_chord:.4g} m, "

@@ -67,7 +67,7 @@ def solve_all(table, flow, num_blades, torque, loss, settings, begin, end, out):
     sheets = (cover_first, cover_last, offset, kind)
     x_first, nx, x_last = grid[0], int(grid[1]), grid[2]
     barrier, max_iter, angle_tol, root_step, start_ratio, lowest_ratio, switches = settings
-    solve_settings = (barrier, max_iter, angle_tol, root_step)
+    solve_settings = (max_iter, angle_tol, root_step)
     k = slots.shape[1]
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
     st = np.zeros(_SOLVE_SIZE)  # a solve's state, then the station's and the sheet's constants

@@ -105,7 +105,7 @@ def sheet_solve(coef, sheets, st, label, lo, hi, f_lo, start, x0, grid, settings
     (``Phi = F (e - lambda t)`` of the exact loading, ``cd/cl`` of the paper loading's) is infinite where the
     root is not valid: not converged, off the sheet, at a jump of the residual (neither it nor its last Newton
     step small) or below the table."""
-    _, max_iter, angle_tol, root_step = settings  # the barrier is st[_BARRIER] (set once per kernel call)
+    max_iter, angle_tol, root_step = settings  # the barrier is st[_BARRIER] (set once per kernel call)
     _set_sheet(st, sheets, label)
     _fresh(st, x0)
     x, converged, residual, slope, _ = _newton(st, coef, lo, hi, f_lo, start, int(max_iter), angle_tol)

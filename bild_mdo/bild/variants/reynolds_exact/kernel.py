@@ -81,7 +81,7 @@ def solve_all(table, flow, num_blades, guess, first_label, torque, loss, setting
     sheets = (cover_first, cover_last, offset, kind)
     x_first, nx, x_last = grid[0], int(grid[1]), grid[2]
     barrier, max_iter, angle_tol, root_step, start_ratio, prune, window, margin, near_ratio = settings
-    solve_settings = (barrier, max_iter, angle_tol, root_step)
+    solve_settings = (max_iter, angle_tol, root_step)
     k = slots.shape[1]
     labels, x0s, scores = np.empty(k, dtype=np.int64), np.empty(k), np.empty(k)
     near_label = np.empty(k + end_x0.size, dtype=np.int64)

@@ -88,15 +88,14 @@ NEAR_RATIO = 1.2
 
 class StationSolution(NamedTuple):
     """Per station: the inflow angle, the sheet coordinate ``x0``, the sheet (``label``, -1 unloaded), the
-    status (module constants), where loaded the values a station passes on (``[n, 6]``: ``eta2, alpha,
-    cl, cd, Re, Re C``; NaN elsewhere) and ``objective``, the chosen state's ``Phi = F (e - lambda t)``."""
+    status (module constants) and, where loaded, the values a station passes on (``[n, 6]``: ``eta2, alpha,
+    cl, cd, Re, Re C``; NaN elsewhere)."""
 
     phi: np.ndarray
     x0: np.ndarray
     label: np.ndarray
     status: np.ndarray
     values: np.ndarray = None
-    objective: np.ndarray = None
 
 
 def solve_stations(table, flow, start=None, first_label=None):
@@ -125,7 +124,7 @@ def solve_stations(table, flow, start=None, first_label=None):
     torque, loss = flow.chord_form == "torque", LOSS_CODES[flow.loss_model]
     run_in_threads(lambda begin, end: solve_all(arrays, rows, flow.num_blades, guess, first, torque, loss, settings,
                                                 probes, frac, begin, end, out), design_starts(rows), n)
-    return StationSolution(out[0], out[1], out[2].astype(int), out[3].astype(int), out[5:].T, out[4])
+    return StationSolution(out[0], out[1], out[2].astype(int), out[3].astype(int), out[5:].T)
 
 
 def flow_rows(flow):
