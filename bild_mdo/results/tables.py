@@ -258,6 +258,8 @@ def reference_mismatch(design):
     if station_sheet is not None:
         taken = ("a station at r_ref leaves it unloaded" if station_sheet < 0
                  else f"a station at r_ref takes sheet {int(station_sheet)}, of lower F (e - lambda t)")
+        taken += ("; no other state with c_ref there is taken by a station at its own lambda: c_ref lies in a jump "
+                  "of the optimal blades' chord at r_ref")
     else:
         sheets = np.unique(_sheets_next_to_reference(design.values))
         taken = "the stations next to r_ref take sheet(s) " + ", ".join(str(int(b)) for b in sheets)

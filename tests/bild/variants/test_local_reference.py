@@ -154,3 +154,42 @@ def test_consistent_designs_have_ref_chord_at_r_ref(radius, v_axial, ideal_loadi
         assert design.values["station_branch_ref"] == design.values["section_branch_ref"]
     assert not [w for w in recwarn if issubclass(w.category, ReferenceChordWarning)]
     assert "ref_chord is not" not in design.summary()
+
+
+def _small_rotor_reference(ref_chord):
+    """LocalReferenceComp (exact loading) of the small two-blade hover rotor (R 0.3 m, 6000 rpm, r_ref = R/2,
+    sea-level air) at these reference chords."""
+    from bild_mdo.atmosphere import isa
+
+    air = isa(0.0, derivatives=False)
+    prob = om.Problem(reports=False)
+    prob.model.add_subsystem("c", LocalReferenceComp(num_nodes=len(ref_chord), num_blades=2, polar=default_polar(),
+                                                     ideal_loading="exact"), promotes=["*"])
+    prob.setup(force_alloc_complex=True)
+    for name, value in dict(v_axial=0.0, v_theta_ref=6000.0 * np.pi / 30.0 * 0.15, ref_radius=0.15, radius=0.3,
+                            hub_radius=0.06, rho=air.rho, mu=air.mu, ref_chord=ref_chord).items():
+        prob.set_val(name, value)
+    prob.run_model()
+    return prob
+
+
+def test_the_reference_state_is_the_one_a_station_at_r_ref_takes():
+    """Invariant: a station at r_ref takes the reference state at its lambda.  On the small hover rotor at
+    c_ref 0.0254 m the state of least cd/cl with that chord is not one (a station at r_ref takes another sheet at
+    its lambda, and a chord of 0.044 m); the next state with c_ref, on another sheet, is, so the reference takes it
+    and the blade has ref_chord at r_ref (a station sits there with 12 stations).  At 0.02 m the state of least
+    cd/cl is already the station's; partials by complex step on both."""
+    from bild_mdo import design_rotor
+
+    prob = _small_rotor_reference([0.0254, 0.02])
+    comp = prob.model.c
+    first = solve_reference(comp.table, default_polar(), comp._flow(comp._inputs))
+    branch, station = prob.get_val("section_branch_ref"), prob.get_val("station_branch_ref")
+    assert first.label[0] != branch[0] and branch[0] == station[0]
+    assert first.label[1] == branch[1] == station[1]
+    assert_check_partials(prob.check_partials(method="cs", out_stream=None), atol=1e-8, rtol=1e-7)
+    design = design_rotor(radius=0.3, rpm=6000, v_axial=0.0, num_blades=2, ref_chord=0.0254, num_radial=12,
+                          section_point="local", ideal_loading="exact", bem_analysis=False)
+    assert design.radii[4] == pytest.approx(design.ref_radius, rel=1e-12)
+    assert design.chord[4] == pytest.approx(0.0254, rel=1e-12)
+    assert design.values["section_branch_ref"] == branch[0]

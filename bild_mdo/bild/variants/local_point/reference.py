@@ -26,6 +26,8 @@ _RE_ONLY = ("alpha_star_ref", "cl_star_ref", "cd_star_ref", "reynolds_ref")
 _TABLE_QUANTITIES = {"phi_ref": "phi", "alpha_star_ref": "alpha_star", "cl_star_ref": "cl_star",
                      "cd_star_ref": "cd_star", "load_reynolds_ref": "load_reynolds",
                      "ideal_loading_constant": "lambda_ratio"}
+#: The most sheets whose exclusion a 64-bit mask records (a table with more keeps the first reference state).
+_MAX_SHEETS = 63
 #: Why a reference chord below the lightest ideal load of its station is infeasible (exact loading).
 LIGHTEST_LOAD = ("Reynolds-aware exact ideal loading: ref_chord is below the lightest ideal load of the reference "
                  "station (there its marginal energy loss per thrust, lambda, falls as the chord grows, or loading "
@@ -133,8 +135,11 @@ class LocalReferenceComp(om.ExplicitComponent):
                           "converge (check ref_chord and the operating point)",
                           {"ref_chord [m]": ref.chord, "Re_ref": re_ref})
         values = self._values(ref, solution)
+        exact = self.options["ideal_loading"] == "exact"
+        if exact:
+            solution, values, branch = self._consistent_sheet(ref, solution, values)
         self._cache = {"key": key, "solution": solution, "values": values, "linear": None}
-        if self.options["ideal_loading"] == "exact":
+        if exact:
             states = {"phi_ref": solution.phi, "v_axial": ref.v_axial, "v_theta_ref": ref.v_theta}
             failed = check_reference_annulus(self, states, values["lambda_n"], values["lambda_d"],
                                              "Reynolds-aware exact ideal loading", "D_tot = 0")
@@ -143,23 +148,60 @@ class LocalReferenceComp(om.ExplicitComponent):
                               {"ref_chord [m]": ref.chord, "Re_ref": re_ref,
                                "lambda [m/s]": values["ideal_loading_constant"]}, light=True)
             self._cache["lam_failed"] = failed | light | ~solution.ok
-            self._cache["station_branch"] = self._station_branch(ref, solution, values, ~self._cache["lam_failed"])
+            self._cache["station_branch"] = np.where(self._cache["lam_failed"], -2.0, branch)
         return self._cache
 
-    def _station_branch(self, ref, solution, values, candidates):
-        """The sheet a station at ``r_ref`` takes with the reference state's lambda (the stations' own solve, the
-        Reynolds-aware exact loading's; -1 unloaded), where the reference state lies on the table (``candidates``);
-        -2 elsewhere (the Reynolds gap, an infeasible node).  Where it is not the reference state's sheet, that
-        station's state has the lower ``Phi``, another chord and another load, so the blade does not have
-        ``ref_chord`` at ``r_ref`` (the design result's notes say so)."""
+    def _consistent_sheet(self, ref, solution, values):
+        """The reference state whose lambda makes it the ideal load of a station at ``r_ref`` (exact loading):
+        ``(solution, values, station_branch)``.
+
+        ``station_branch`` is the sheet such a station takes at the state's lambda (the stations' own solve, -1
+        unloaded; -2 where the state is not on the table).  Where that is not the state's sheet, or the state is
+        no ideal load there (``slope <= 0`` or ``Phi >= 0``), the station's state has another chord, so the blade
+        would not have ``ref_chord`` at ``r_ref``: the next table minimum with ``c_ref`` at ``Re_ref`` (the
+        lowest ``cd/cl`` first) is tried, and the first one a station at its own lambda takes, on its sheet,
+        replaces it.  Where none does, ``c_ref`` lies in a jump of the blade's chord at ``r_ref`` along the
+        designs of growing lambda (the first state is kept; the design result says so).  On the levels-10 sweep
+        of the paper that corrects 48 of 1,268 such designs.
+        """
         from bild_mdo.bild.variants.reynolds_exact.solve import solve_stations
 
         branch = np.full(ref.r.size, -2.0)
         lam = values["ideal_loading_constant"]
-        at = np.flatnonzero(candidates & solution.ok & solution.on_table & np.isfinite(lam))
-        if at.size:
-            branch[at] = solve_stations(self.table, station_flow(take_reference(ref, at))._replace(lam=lam[at])).label
-        return branch
+        at = np.flatnonzero(solution.ok & solution.on_table & np.isfinite(lam) & (values["lambda_d"] > 0.0))
+        if not at.size:
+            return solution, values, branch
+        branch[at] = solve_stations(self.table, station_flow(take_reference(ref, at))._replace(lam=lam[at])).label
+        with np.errstate(invalid="ignore"):
+            wrong = (branch[at] != solution.label[at]) | ~((solution.slope[at] > 0.0) & (solution.objective[at] < 0.0))
+        todo = at[wrong]
+        if not todo.size or self.table.num_sheets > _MAX_SHEETS:
+            return solution, values, branch
+        fields = {name: np.array(value, copy=True) for name, value in solution._asdict().items()}
+        values = {name: value.copy() for name, value in values.items()}
+        exclude = np.left_shift(np.int64(1), solution.label[todo].astype(np.int64))
+        while todo.size:  # one pass per sheet tried: at most the table's number of sheets
+            sub = take_reference(ref, todo)
+            other = solve_reference(self.table, self.options["polar"], sub, exclude, gap=False)
+            other_values = self._values(sub, other)
+            lam = other_values["ideal_loading_constant"]
+            with np.errstate(invalid="ignore"):
+                ideal = np.flatnonzero(other.ok & np.isfinite(lam) & (other_values["lambda_d"] > 0.0)
+                                       & (other.slope > 0.0) & (other.objective < 0.0))
+            taken = np.zeros(todo.size, dtype=bool)
+            if ideal.size:
+                labels = solve_stations(self.table, station_flow(take_reference(sub, ideal))._replace(
+                    lam=lam[ideal])).label
+                taken[ideal] = labels == other.label[ideal]
+            for name, value in fields.items():
+                value[todo[taken]] = getattr(other, name)[taken]
+            for name, value in values.items():
+                value[todo[taken]] = other_values[name][taken]
+            branch[todo[taken]] = other.label[taken]
+            more = other.ok & ~taken
+            exclude = exclude[more] | np.left_shift(np.int64(1), other.label[more].astype(np.int64))
+            todo = todo[more]
+        return type(solution)(**fields), values, branch
 
     def _below_lightest_load(self, ref, re_ref, solution, values):
         """Nodes whose reference state is no ideal load of a station at ``r_ref`` at its own lambda (exact

@@ -99,10 +99,11 @@ def reference_newton(coef, coef_ell, x_first, low, high, offset, log_k, k_tip, k
 
 
 @kernel
-def reference_all(table, extra, consts, guess, ell_ref, torque, loss, settings, gap_rank, out):
+def reference_all(table, extra, consts, guess, ell_ref, torque, loss, settings, gap_rank, exclude, out):
     """Solve every design's reference station (module docstring).
 
-    ``consts[n, 5]``: ``ln K, k_tip, k_hub, V_x, V_theta``; ``settings``: ``(passes, tol, phi_step, x_step)``.
+    ``consts[n, 5]``: ``ln K, k_tip, k_hub, V_x, V_theta``; ``settings``: ``(passes, tol, phi_step, x_step)``;
+    ``exclude[n]``: bit ``k`` set, sheet ``k`` is no candidate (0: all are).
     Writes ``out[n, 10]``: ``phi, x0, s, alpha, label, on_table, N_tot, D_tot, slope, Phi`` (``on_table`` 0 where
     no sheet covers ``Re_ref``, or where the table has only maxima there and a sheet passes ``Re_ref`` in the
     cells it leaves out next to a fold: the caller solves those on the polar; ``slope`` the ``d(N_tot/D_tot)/dphi``
@@ -121,6 +122,8 @@ def reference_all(table, extra, consts, guess, ell_ref, torque, loss, settings, 
             if not math.isfinite(start):
                 continue
             label = run_label[m]
+            if (exclude[j] >> label) & 1:
+                continue
             low, high, off = cover_first[label], cover_last[label], offset[label]
             cell = math.floor((start - x_first) * _INV_STEP)
             if cell < low or cell >= high:

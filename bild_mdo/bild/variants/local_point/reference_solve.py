@@ -106,8 +106,10 @@ def first_angle(ref):
     return 0.5 * (geometric + np.arccos(np.clip(np.cos(geometric) - 2.0 * q, -1.0, 1.0)))
 
 
-def solve_reference(table, polar, ref):
-    """:class:`ReferenceSolution` of every design (flat real inputs; module docstring)."""
+def solve_reference(table, polar, ref, exclude=None, gap=True):
+    """:class:`ReferenceSolution` of every design (flat real inputs; module docstring); ``exclude[n]``
+    (int64, optional): bit ``k`` set, sheet ``k`` is no candidate of that design; ``gap=False``: a design with
+    no minimum on the table is not solved on the polar (``ok`` False)."""
     from bild_mdo.bild.variants.local_point.kernels import LOSS_CODES, table_arrays
     from bild_mdo.bild.variants.local_point.reference_kernel import reference_all, reference_arrays
 
@@ -123,14 +125,15 @@ def solve_reference(table, polar, ref):
         reference_all(table_arrays(table), table._reference_arrays,
                       np.column_stack((c.log_k, c.k_tip, k_hub, c.v_axial, c.v_theta)), guess, ell_ref,
                       ref.chord_form == "torque", LOSS_CODES[ref.loss_model],
-                      np.array([_PASSES, _TOL, _PHI_STEP_MAX, _X_STEP_MAX]), _GAP_RANK, out)
+                      np.array([_PASSES, _TOL, _PHI_STEP_MAX, _X_STEP_MAX]), _GAP_RANK,
+                      np.zeros(n, dtype=np.int64) if exclude is None else exclude, out)
     on_table = out[:, 5] > 0.0
     phi = np.where(on_table, out[:, 0], guess)
     x0, s, alpha = np.where(on_table, out[:, 1], 0.0), np.where(on_table, out[:, 2], _START_RATIO), \
         np.where(on_table, out[:, 3], 0.1)
     label = np.where(on_table, out[:, 4], -1).astype(int)
     ok = on_table.copy()
-    gap = np.flatnonzero(~on_table)
+    gap = np.flatnonzero(~on_table) if gap else np.zeros(0, dtype=int)
     if gap.size:
         phi_g, alpha_g, ok_g = gap_solve(polar, take_reference(ref, gap), guess[gap])
         phi[gap], alpha[gap], ok[gap] = phi_g, alpha_g, ok_g
