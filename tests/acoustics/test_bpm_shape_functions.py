@@ -114,8 +114,7 @@ def test_st1_closed_form():
 def test_pure_piecewise_evaluates_each_branch_at_its_own_points_only(name, monkeypatch):
     """The fits whose branches depend on their argument alone (``piecewise(..., pure=True)``) give, for arrays,
     the values of the general path (every branch everywhere, then selected) bit for bit: real and complex
-    (complex step), on the edges (the lower branch) and at NaN (the first branch at its fill point, as the
-    general path gives)."""
+    (complex step), on the edges (the lower branch) and at NaN (NaN on both paths: never a silent number)."""
     from bild_mdo.acoustics.bpm import jet_math, laminar_vortex_shedding, turbulent_trailing_edge
 
     function = getattr(bpm, name)
@@ -128,3 +127,4 @@ def test_pure_piecewise_evaluates_each_branch_at_its_own_points_only(name, monke
     for values, argument in zip(fast, (x, x + 1e-30j)):
         np.testing.assert_array_equal(values, function(argument))
         assert values.dtype == argument.dtype and values.shape == x.shape
+        assert np.isnan(values[0, 0, 0]) and np.count_nonzero(np.isnan(values)) == 1

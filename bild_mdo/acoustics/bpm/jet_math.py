@@ -93,7 +93,8 @@ def piecewise(x, edges, branches, pure=False):
 
     Each branch is evaluated on ``x`` replaced, outside its own interval, by a point inside it (the
     midpoint of a bounded interval, else its finite edge), so branches with a restricted domain (square
-    roots) never see a value outside it; the result is assembled with :func:`where`.
+    roots) never see a value outside it; the result is assembled with :func:`where`.  A NaN argument gives
+    NaN (value and partials), never a branch's number.
 
     Parameters
     ----------
@@ -123,12 +124,13 @@ def piecewise(x, edges, branches, pure=False):
             fill = hi if i == 0 else (lo if i == len(branches) - 1 else 0.5 * (lo + hi))
             out = branch(where(inside, x, fill))
         result = out if result is None else where(inside, out, result)
-    return result
+    nan = np.isnan(xr)
+    return where(nan, x * np.nan, result) if nan.any() else result
 
 
 def _piecewise_points(x, xr, lower, upper, branches):
     """:func:`piecewise` of an array ``x`` with pure branches: each evaluated at its own points only (the same
-    values, elementwise); a point in no interval (NaN) gets the first branch at its fill point, as there."""
+    values, elementwise); a NaN argument gives NaN, as there."""
     x = np.asarray(x)
     out = np.empty(x.shape, dtype=np.result_type(x, float))
     covered = np.zeros(x.shape, dtype=bool)
@@ -137,7 +139,5 @@ def _piecewise_points(x, xr, lower, upper, branches):
         if inside.any():
             out[inside] = branch(x[inside])
             covered |= inside
-    if not covered.all():
-        missing = ~covered
-        out[missing] = branches[0](np.full(np.count_nonzero(missing), upper[0], dtype=out.dtype))
+    out[~covered] = np.nan
     return out
