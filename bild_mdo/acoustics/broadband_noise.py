@@ -14,6 +14,11 @@ over azimuth, summed over stations and times the number of blades::
 
     p2[b] = B / N_psi  sum_psi sum_stations p2_segment(f_b (1 - M_r), r_e, D_h, D_l)
 
+Trailing-edge bluntness vortex shedding (TEB-VS, Eq. 70) needs the trailing-edge thickness ``h`` of each
+station (input ``trailing_edge_thickness``, m; default 0, a sharp edge, which makes no bluntness noise:
+``p2 ~ h^2.75`` as ``h -> 0``) and the solid angle ``Psi`` of the edge (option ``trailing_edge_angle``, deg,
+default 14, a NACA 0012's); :mod:`~bild_mdo.acoustics.bpm.bluntness`.
+
 The tip vortex (Eq. 61, a rounded or flat tip) takes the chord, ``W``, ``phi`` and ``alpha`` of the
 outermost station (``alpha'_TIP = tip_alpha_correction * alpha``, Eq. 65) and sits at the tip radius ``R``.
 LBL-VS exists only with an untripped boundary layer.
@@ -35,7 +40,9 @@ import openmdao.api as om
 
 from bild_mdo import validation
 from bild_mdo.acoustics.bands import THIRD_OCTAVE_CENTRES
-from bild_mdo.acoustics.bpm.jet_math import value
+from bild_mdo.acoustics.bpm.bluntness import (MAX_TRAILING_EDGE_ANGLE, NACA0012_TRAILING_EDGE_ANGLE,
+                                              bluntness_pressure_squared)
+from bild_mdo.acoustics.bpm.jet_math import value, where
 from bild_mdo.acoustics.bpm.laminar_vortex_shedding import lbl_vs_pressure_squared
 from bild_mdo.acoustics.bpm.rotor_geometry import GEOMETRY_NAMES, segment_geometry
 from bild_mdo.acoustics.bpm.tip_vortex import TIP_ALPHA_CORRECTION, TIP_SHAPES, tip_vortex_pressure_squared
@@ -44,14 +51,18 @@ from bild_mdo.utils.jet import Jet
 from bild_mdo.utils.options import add_inputs, declare_size_options
 
 #: The broadband mechanisms, in the order of the ``ns`` axis of ``broadband_source_pressure_squared``.
-BROADBAND_SOURCES = ("tbl_te_pressure", "tbl_te_suction", "separation", "lbl_vs", "tip_vortex")
+BROADBAND_SOURCES = ("tbl_te_pressure", "tbl_te_suction", "separation", "lbl_vs", "tip_vortex", "bluntness")
 _TIP = BROADBAND_SOURCES.index("tip_vortex")
 _LBL = BROADBAND_SOURCES.index("lbl_vs")
+_BLUNT = BROADBAND_SOURCES.index("bluntness")
 _RPM_TO_RAD_S = np.pi / 30.0
 #: Peak memory per segment, azimuth and band (bytes) of a run and of the partials, measured (30 stations, 24
-#: azimuths, 31 bands, one observer: about 3.5 MB and 18 MB per design at 81 ... 1,296 designs) and rounded up.
-RUN_BYTES, PARTIALS_BYTES = 200.0, 1000.0
+#: azimuths, 31 bands, one observer, 20 designs: 137 and 705 B with sharp trailing edges, 225 and 939 B with
+#: the bluntness noise) and rounded up.
+RUN_BYTES, PARTIALS_BYTES = 300.0, 1200.0
 _DIST = ("radii", "dr", "chord", "alpha", "inflow_speed", "phi")
+#: Every per-station input (the distributions and the trailing-edge thickness).
+_STATION = _DIST + ("trailing_edge_thickness",)
 _NODE = ("rpm", "radius", "rho", "mu", "speed_of_sound")
 _GEOMETRY_SEEDS = ("r", "pitch", "w", "inflow_angle", "rpm", "speed_of_sound", "ox", "oy", "oz")
 
@@ -81,6 +92,9 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         ``'rounded'`` (default, Eq. 63) or ``'flat'`` (Eq. 67).
     tip_alpha_correction : float
         ``alpha'_TIP / alpha_TIP`` of the tip vortex (Eq. 65); default 0.71, BPM's untwisted wing (Eq. 66).
+    trailing_edge_angle : float
+        Solid angle ``Psi`` (deg) between the surfaces at the trailing edge, of the bluntness noise (Eq. 70);
+        default 14 (NACA 0012), 0 for a flat plate.
 
     Inputs
     ------
@@ -95,6 +109,8 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         The air.
     observer_position[nn, no, 3] (m)
         Observers in the rotor frame.
+    trailing_edge_thickness[nn, nr] (m)
+        Trailing-edge thickness ``h`` of each station (>= 0; 0, the default, is a sharp edge: no bluntness noise).
 
     Outputs
     -------
@@ -118,6 +134,9 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                              desc="tip shape of the tip-vortex model: rounded (Eq. 63) or flat (Eq. 67)")
         self.options.declare("tip_alpha_correction", types=float, default=TIP_ALPHA_CORRECTION, lower=0.0,
                              desc="alpha'_TIP / alpha_TIP of the tip vortex (Eq. 65; 0.71 is BPM's Eq. 66)")
+        self.options.declare("trailing_edge_angle", types=float, default=NACA0012_TRAILING_EDGE_ANGLE, lower=0.0,
+                             upper=MAX_TRAILING_EDGE_ANGLE,
+                             desc="solid angle Psi (deg) of the trailing edge, bluntness noise (Eq. 70)")
 
     def _sizes(self):
         o = self.options
@@ -139,6 +158,8 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         self.add_input("alpha", val=np.full((nn, nr), 0.05), units="rad", desc="angle of attack of each station")
         self.add_input("observer_position", val=np.tile([-10.0, 0.0, 0.0], (nn, no, 1)), units="m",
                        desc="observer positions in the rotor frame (x along the thrust)")
+        self.add_input("trailing_edge_thickness", val=np.zeros((nn, nr)), units="m",
+                       desc="trailing-edge thickness of each station (0: a sharp edge, no bluntness noise)")
         self.add_output("broadband_source_pressure_squared", val=np.zeros((nn, no, ns, nb)), units="Pa**2",
                         desc="BPM mean-square pressure per mechanism (BROADBAND_SOURCES) and band")
         self.add_output("broadband_pressure_squared", val=np.zeros((nn, no, nb)), units="Pa**2",
@@ -158,7 +179,10 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         last[-1] = True
         seg_all = np.outer(segment, np.ones(nr, dtype=bool))
         seg_tip = seg_all | np.outer(tip, last)
-        return {"radii": seg_all, "dr": seg_all, "chord": seg_tip, "alpha": seg_tip, "inflow_speed": seg_tip,
+        blunt = np.zeros((ns, nr), dtype=bool)
+        blunt[_BLUNT] = True
+        return {"trailing_edge_thickness": blunt,
+                "radii": seg_all, "dr": seg_all, "chord": seg_tip, "alpha": seg_tip, "inflow_speed": seg_tip,
                 "phi": seg_tip,
                 "rpm": segment | tip, "speed_of_sound": segment | tip,
                 "rho": segment, "mu": segment, "radius": tip, "observer_position": segment | tip}
@@ -168,7 +192,7 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         nn, nr, no, ns, nb = self._sizes()
         patterns = {}
         for name, dep in self._dependencies().items():
-            if name in _DIST:
+            if name in _STATION:
                 full = (nn, no, ns, nb, nr)
                 mask = np.broadcast_to(dep[None, None, :, None, :], full)
                 col = np.broadcast_to(np.arange(nn)[:, None, None, None, None] * nr + np.arange(nr), full)
@@ -240,6 +264,7 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         p2_l = None if tripped else lbl_vs_pressure_squared(f_src, seg["chord"], seg["span"], seg["speed"],
                                                             seg["mach"], seg["alpha"], seg["reynolds"],
                                                             g["distance"], g["d_high"])
+        p2_b = self._bluntness(inputs, station, seg, g, f_src, tripped, jets)
         tip_values, tip = segment(nr - 1)
         geo_tip = segment_geometry(_seed(per_node["radius"], "r", jets), omega,
                                    _seed(station(inputs["inflow_speed"], nr - 1), "w", jets),
@@ -250,7 +275,22 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         p2_t = tip_vortex_pressure_squared(freq * gt["shift"], tip["chord"], tip["mach"], c0_tip, tip["alpha"],
                                            gt["distance"], gt["d_high"], tip_shape=o["tip_shape"],
                                            alpha_correction=o["tip_alpha_correction"])
-        return ([p2_p, p2_s, p2_a, p2_l, p2_t], (seg_values, geo), (tip_values, geo_tip))
+        return ([p2_p, p2_s, p2_a, p2_l, p2_t, p2_b], (seg_values, geo), (tip_values, geo_tip))
+
+    def _bluntness(self, inputs, station, seg, g, f_src, tripped, jets):
+        """TEB-VS of the stations with a blunt trailing edge (``h > 0``), zero at the others; None if none is."""
+        h = inputs["trailing_edge_thickness"]
+        if np.any(np.real(h) < 0.0) or not np.all(np.isfinite(h)):
+            raise om.AnalysisError(f"{self.msginfo}: trailing_edge_thickness must be finite and >= 0 (m), got "
+                                   f"{np.real(h).min():.6g} m")
+        blunt = np.real(h) > 0.0
+        if not np.any(blunt):
+            return None
+        thickness = _seed(station(np.where(blunt, h, 1.0)), "thickness", jets)
+        p2 = bluntness_pressure_squared(f_src, seg["chord"], seg["span"], seg["speed"], seg["mach"], seg["alpha"],
+                                        seg["reynolds"], g["distance"], g["d_high"], thickness,
+                                        self.options["trailing_edge_angle"], tripped)
+        return where(station(blunt), p2, 0.0 * p2)
 
     def compute(self, inputs, outputs):
         nn, _, no, ns, nb = self._sizes()
@@ -268,7 +308,7 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         nn, nr, no, ns, nb = self._sizes()
         scale = self.options["num_blades"] / self.options["num_azimuth"]
         spectra, (seg, geo), (tip, geo_tip) = self._evaluate(inputs, jets=True)
-        full = {name: np.zeros((nn, no, ns, nb, nr)) for name in _DIST}
+        full = {name: np.zeros((nn, no, ns, nb, nr)) for name in _STATION}
         full.update({name: np.zeros((nn, no, ns, nb)) for name in _NODE})
         full["observer_position"] = np.zeros((nn, no, ns, nb, 3))
         for s, p2 in enumerate(spectra):
@@ -276,9 +316,9 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                 continue
             values, geometry = (tip, geo_tip) if s == _TIP else (seg, geo)
             for name, x in self._chain(p2, values, geometry, s == _TIP, scale).items():
-                if name in _DIST and s == _TIP:
+                if name in _STATION and s == _TIP:
                     full[name][:, :, s, :, -1] = x[:, :, 0, :]  # the tip's one station is the outermost
-                elif name in _DIST:
+                elif name in _STATION:
                     full[name][:, :, s] = np.moveaxis(x, 2, 3)  # [nn, no, nr, nb] -> [nn, no, nb, nr]
                 else:
                     full[name][:, :, s] = x
@@ -331,6 +371,8 @@ class BroadbandNoiseComp(om.ExplicitComponent):
             out["chord"] = out["chord"] + total("reynolds", re / values["chord"])
             out["inflow_speed"] = out["inflow_speed"] + total("reynolds", re / speed)
             out["dr"] = total("span")
+            if "thickness" in p2.d:
+                out["trailing_edge_thickness"] = total("thickness")
             out["radii"] = per_station(geo_d["r"])
             out["rho"] = over_stations(total("reynolds", re / values["rho"]))
             out["mu"] = over_stations(total("reynolds", -re / values["mu"]))

@@ -2,13 +2,15 @@
 
 :func:`declare_noise_options` gives :class:`~bild_mdo.bild.bild_group.BILDGroup`,
 :class:`~bild_mdo.bem.bem_group.BEMAnalysisGroup` and
-:class:`~bild_mdo.multipoint.multipoint_group.MultipointRotorGroup` the same three options
-(``noise_observers``, ``noise_harmonics``, ``noise_boundary_layer``);
+:class:`~bild_mdo.multipoint.multipoint_group.MultipointRotorGroup` the same options
+(``noise_observers``, ``noise_harmonics``, ``noise_boundary_layer``, ``noise_trailing_edge_angle``);
 :func:`~bild_mdo.acoustics.rotor_noise_group.make_noise_group` builds the group they ask for.
 """
 from __future__ import annotations
 
 import numpy as np
+
+from bild_mdo.acoustics.bpm.bluntness import MAX_TRAILING_EDGE_ANGLE, NACA0012_TRAILING_EDGE_ANGLE
 
 #: Boundary-layer states of the BPM thickness fits (Brooks, Pope & Marcolini 1989, Sec. 3).
 BOUNDARY_LAYERS = ("tripped", "untripped")
@@ -78,6 +80,10 @@ def declare_noise_options(options):
                     desc="blade-passage harmonics of the tonal noise (with noise_observers)")
     options.declare("noise_boundary_layer", default="tripped", check_valid=check_boundary_layer,
                     desc="BPM boundary layer 'tripped' or 'untripped' (with noise_observers)")
+    options.declare("noise_trailing_edge_angle", types=float, default=NACA0012_TRAILING_EDGE_ANGLE, lower=0.0,
+                    upper=MAX_TRAILING_EDGE_ANGLE,
+                    desc="solid angle Psi (deg) of the trailing edge, bluntness noise (with noise_observers and "
+                         "the input trailing_edge_thickness)")
 
 
 #: Outputs a rotor group promotes from its ``noise`` subsystem.

@@ -9,6 +9,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.acoustics.bands import THIRD_OCTAVE_CENTRES
+from bild_mdo.acoustics.bpm.bluntness import MAX_TRAILING_EDGE_ANGLE, NACA0012_TRAILING_EDGE_ANGLE
 from bild_mdo.acoustics.broadband_noise import BroadbandNoiseComp
 from bild_mdo.acoustics.noise_options import (BOUNDARY_LAYERS, BROADBAND_OUTPUTS, LEVEL_OUTPUTS, TONAL_OUTPUTS,
                                               check_boundary_layer, check_observers, check_observers_option)
@@ -95,6 +96,9 @@ class RotorNoiseGroup(om.Group):
                              desc="BPM boundary-layer thickness fits: 'tripped' or 'untripped'")
         self.options.declare("include_broadband", types=bool, default=True,
                              desc="add the BPM broadband self-noise (False: tones only)")
+        self.options.declare("trailing_edge_angle", types=float, default=NACA0012_TRAILING_EDGE_ANGLE, lower=0.0,
+                             upper=MAX_TRAILING_EDGE_ANGLE,
+                             desc="solid angle Psi (deg) of the trailing edge, of the bluntness noise")
         self.options.declare("polar", default=None, allow_none=True, recordable=False,
                              desc="airfoil Polar for the section thickness; None selects the built-in NACA 4412")
         self.options.declare("observers", default=None, allow_none=True, check_valid=check_observers_option,
@@ -116,7 +120,8 @@ class RotorNoiseGroup(om.Group):
         if opts["include_broadband"]:
             self.add_subsystem("broadband", BroadbandNoiseComp(**size, **observers, num_blades=opts["num_blades"],
                                                                band_frequencies=opts["band_frequencies"],
-                                                               boundary_layer=opts["boundary_layer"]),
+                                                               boundary_layer=opts["boundary_layer"],
+                                                               trailing_edge_angle=opts["trailing_edge_angle"]),
                                promotes_inputs=["*"], promotes_outputs=list(BROADBAND_OUTPUTS[:-1]))
             totals_inputs.append("broadband_pressure_squared")
         outputs = ["tonal_spl"] + (["band_spl"] if opts["include_broadband"] else []) + list(LEVEL_OUTPUTS)
@@ -137,4 +142,5 @@ def make_noise_group(options, num_nodes, num_radial, num_blades, polar):
     observers = check_observers(options["noise_observers"])
     return RotorNoiseGroup(num_nodes=num_nodes, num_radial=num_radial, num_observers=observers.shape[0],
                            num_harmonics=options["noise_harmonics"], num_blades=num_blades,
-                           boundary_layer=options["noise_boundary_layer"], polar=polar, observers=observers)
+                           boundary_layer=options["noise_boundary_layer"], polar=polar, observers=observers,
+                           trailing_edge_angle=options["noise_trailing_edge_angle"])

@@ -4,6 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo import validation
+from bild_mdo.acoustics.bpm.bluntness import MAX_TRAILING_EDGE_ANGLE
 from bild_mdo.acoustics.rotor_noise_group import check_observers
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, figure_file
@@ -36,6 +37,12 @@ def add_noise_arguments(parser):
                         help="blade-passage harmonics of the tonal noise [-] (default 10)")
     parser.add_argument("--untripped", action="store_true",
                         help="BPM boundary-layer fits of an untripped (clean) section (default: tripped)")
+    parser.add_argument("--trailing-edge-thickness", type=float, default=0.0, metavar="H",
+                        help="trailing-edge thickness [m] at every station, for the BPM bluntness noise "
+                             "(default 0: a sharp edge, no bluntness noise)")
+    parser.add_argument("--trailing-edge-angle", type=float, default=14.0, metavar="PSI",
+                        help="solid angle between the surfaces at the trailing edge [deg] (default 14, NACA 0012; "
+                             "at most 30)")
     parser.add_argument("--rpm", type=float, default=None, metavar="RPM",
                         help="rotor speed [rpm] (default: the file's design rpm)")
     parser.add_argument("--v-axial", type=float, default=None, metavar="V",
@@ -89,6 +96,8 @@ def run_noise(args, out):
         validation.positive("--rpm", args.rpm, units="rpm")
     if args.v_axial is not None:
         validation.non_negative("--v-axial", args.v_axial, units="m/s")
+    validation.non_negative("--trailing-edge-thickness", args.trailing_edge_thickness, units="m")
+    validation.in_range("--trailing-edge-angle", args.trailing_edge_angle, 0.0, MAX_TRAILING_EDGE_ANGLE, units="deg")
     plot_file = figure_file("--plot", args.plot)
     directivity_file = figure_file("--directivity", args.directivity)
     polar = airfoil_polar("--airfoil", args.airfoil)
@@ -106,8 +115,9 @@ def run_noise(args, out):
     analysis = analyze_rotor(twist=geometry.twist, radii=geometry.radii, polar=polar, altitude=altitude,
                              loss_model=geometry.loss_model or "tip_hub", **rotor)
     boundary_layer = "untripped" if args.untripped else "tripped"
+    edge = dict(trailing_edge_thickness=args.trailing_edge_thickness, trailing_edge_angle=args.trailing_edge_angle)
     noise = rotor_noise(analysis, observers, num_harmonics=harmonics, boundary_layer=boundary_layer, polar=polar,
-                        **rotor)
+                        **edge, **rotor)
     print(f"geometry: {args.geometry}: {len(geometry.radii)} stations, B = {geometry.num_blades}, "
           f"R = {geometry.radius:.6g} m, airfoil {getattr(polar, 'name', polar)}; BEM thrust "
           f"{float(analysis.thrust):.6g} N, power {float(analysis.power) / 1e3:.6g} kW", file=out)
@@ -117,7 +127,7 @@ def run_noise(args, out):
         print(f"wrote {plot_file}", file=out)
     if directivity_file:
         arc = rotor_noise(analysis, _arc(observers[0]), num_harmonics=harmonics, boundary_layer=boundary_layer,
-                          polar=polar, **rotor)
+                          polar=polar, **edge, **rotor)
         plot_directivity(arc, directivity_file)
         print(f"wrote {directivity_file}", file=out)
     return 0

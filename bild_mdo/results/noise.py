@@ -15,6 +15,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo.acoustics.bands import NOMINAL_CENTRES, THIRD_OCTAVE_CENTRES, spl_db
+from bild_mdo.acoustics.bpm.bluntness import MAX_TRAILING_EDGE_ANGLE, NACA0012_TRAILING_EDGE_ANGLE
 from bild_mdo.acoustics.broadband_noise import BROADBAND_SOURCES
 from bild_mdo.acoustics.noise_totals import a_weight_factor
 from bild_mdo.acoustics.rotor_noise_group import BOUNDARY_LAYERS, RotorNoiseGroup, check_observers
@@ -26,7 +27,8 @@ __all__ = ["MODEL", "VALIDITY", "NoiseResult", "combine_noise", "rotor_noise"]
 #: What the noise models are, for summaries.
 MODEL = ("tonal: Hanson's helicoidal-surface far field in its compact-chord limit (Gutin's loading and "
          "Deming's thickness noise in hover), harmonics m B Omega; broadband: Brooks-Pope-Marcolini self-noise "
-         "(NASA RP-1218, 1989: TBL-TE pressure and suction side, separation, LBL-VS, tip vortex) per blade "
+         "(NASA RP-1218, 1989: TBL-TE pressure and suction side, separation, LBL-VS, tip vortex, trailing-edge "
+         "bluntness where a trailing-edge thickness is given) per blade "
          "element in 1/3-octave bands; levels dB re 20 uPa, A-weighting IEC 61672-1")
 #: Where the models stop holding.
 VALIDITY = ("far field only (observers many radii and wavelengths away), axial flight and hover, tip Mach "
@@ -251,7 +253,8 @@ def _rotor_of_analysis(result, rotor):
 
 
 def rotor_noise(result, observers, num_harmonics=10, boundary_layer="tripped", include_broadband=True,
-                band_frequencies=THIRD_OCTAVE_CENTRES, **rotor):
+                band_frequencies=THIRD_OCTAVE_CENTRES, trailing_edge_thickness=0.0,
+                trailing_edge_angle=NACA0012_TRAILING_EDGE_ANGLE, **rotor):
     """Tonal and broadband noise of a rotor design or analysis at observers.
 
     Parameters
@@ -271,6 +274,11 @@ def rotor_noise(result, observers, num_harmonics=10, boundary_layer="tripped", i
         False: tonal noise only.
     band_frequencies : array_like
         Band centre frequencies (Hz), default the 31 one-third-octave bands 20 Hz - 20 kHz.
+    trailing_edge_thickness : float or array_like
+        Trailing-edge thickness ``h`` (m), one value or one per station (``[nr]`` or ``[nn, nr]``); 0, the
+        default, is a sharp edge, which makes no bluntness noise.
+    trailing_edge_angle : float
+        Solid angle ``Psi`` (deg) between the surfaces at the trailing edge (default 14, a NACA 0012's).
     **rotor
         For a BEMResult: ``chord``, ``rpm``, ``v_axial``, ``radius``, ``hub_radius``, ``num_blades`` as
         given to ``analyze_rotor``, and ``polar`` (its airfoil, for the section thickness; default NACA 4412).
@@ -294,19 +302,22 @@ def rotor_noise(result, observers, num_harmonics=10, boundary_layer="tripped", i
         node, station, blades, polar, tip_mach, batch = _rotor_of_analysis(result, rotor)
     positions = check_observers(observers, radius=np.max(node["radius"]))
     nn, nr = station["radii"].shape
+    thickness = _trailing_edge(trailing_edge_thickness, trailing_edge_angle, (nn, nr))
     no = positions.shape[0]
     bands = np.asarray(band_frequencies, dtype=float).ravel()
     prob = om.Problem(reports=False)
     prob.model.add_subsystem("noise", RotorNoiseGroup(
         num_nodes=nn, num_radial=nr, num_observers=no, num_harmonics=int(num_harmonics), num_blades=blades,
-        band_frequencies=bands, boundary_layer=boundary_layer, include_broadband=include_broadband, polar=polar),
-        promotes=["*"])
+        band_frequencies=bands, boundary_layer=boundary_layer, include_broadband=include_broadband, polar=polar,
+        trailing_edge_angle=float(trailing_edge_angle)), promotes=["*"])
     prob.setup(check=False)
     inputs = {meta["prom_name"] for meta in prob.model.get_io_metadata(iotypes="input").values()}
     for name, value in {**node, **station}.items():
         if name in inputs:
             prob.set_val(name, value)
     prob.set_val("observer_position", np.broadcast_to(positions, (nn, no, 3)))
+    if include_broadband:
+        prob.set_val("trailing_edge_thickness", thickness)
     prob.run_model()
 
     def take(name, shape):
@@ -319,7 +330,9 @@ def rotor_noise(result, observers, num_harmonics=10, boundary_layer="tripped", i
     rpm_text = f"{rpm[0]:.6g} rpm" if np.ptp(rpm) == 0 else f"{rpm.min():.6g}-{rpm.max():.6g} rpm"
     description = (f"B = {blades}, {rpm_text}, tip Mach {np.max(tip_mach):.3g}, radius {np.max(node['radius']):.4g} m, "
                    f"{int(num_harmonics)} harmonics, "
-                   + (f"{bands.size} bands ({boundary_layer} boundary layer)" if include_broadband else "no broadband"))
+                   + (f"{bands.size} bands ({boundary_layer} boundary layer" + (
+                       f", trailing edge {np.max(thickness) * 1e3:.3g} mm, Psi {float(trailing_edge_angle):g} deg)"
+                       if np.any(thickness > 0.0) else ")") if include_broadband else "no broadband"))
     return NoiseResult(
         observers=positions, tonal_frequency=take("tonal_frequency", None),
         tonal_pressure_squared=take("tonal_pressure_squared", None),
@@ -330,6 +343,22 @@ def rotor_noise(result, observers, num_harmonics=10, boundary_layer="tripped", i
         description=description, tip_mach=(tip_mach[:, None] if batch else tip_mach[:1]),
         radius=(node["radius"][:, None] if batch else node["radius"][:1]), is_batch=batch,
         boundary_layer=boundary_layer)
+
+
+def _trailing_edge(thickness, angle, shape):
+    """The trailing-edge thickness as ``[nn, nr]`` (m), or ValueError (one line)."""
+    try:
+        h = np.array(thickness, dtype=float)
+        h = np.broadcast_to(h, shape).copy()
+    except (TypeError, ValueError):
+        raise ValueError(f"trailing_edge_thickness must be one value or one per station (shape {shape[1:]} or "
+                         f"{shape}) in metres, got {np.shape(thickness)}") from None
+    if not (np.all(np.isfinite(h)) and np.all(h >= 0.0)):
+        raise ValueError(f"trailing_edge_thickness must be finite and >= 0 (m), got minimum {np.nanmin(h):.6g}")
+    if not (np.isfinite(angle) and 0.0 <= float(angle) <= MAX_TRAILING_EDGE_ANGLE):
+        raise ValueError(f"trailing_edge_angle must be between 0 and {MAX_TRAILING_EDGE_ANGLE:g} deg (14 for a "
+                         f"NACA 0012), got {angle!r}")
+    return h
 
 
 def combine_noise(*results):

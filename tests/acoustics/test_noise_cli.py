@@ -43,6 +43,28 @@ def test_plots(blade, capsys, tmp_path):
     assert f"wrote {arc}.png" in out
 
 
+def test_blunt_trailing_edge(blade, capsys):
+    """--trailing-edge-thickness adds the BPM bluntness noise (Eq. 70): the summary names the edge, and the
+    broadband level rises (the other mechanisms are unchanged, tests/acoustics/test_broadband_noise.py)."""
+    argv = ["noise", str(blade), "--observer", "-10", "0", "2", "--harmonics", "2"]
+    levels = []
+    for extra in ([], ["--trailing-edge-thickness", "0.0008", "--trailing-edge-angle", "16"]):
+        code, out, err = run(capsys, *argv, *extra)
+        assert code == 0, err
+        row = next(line.split() for line in out.splitlines() if line.split()[:2] == ["0", "0"])
+        levels.append(float(row[9]))
+    assert "trailing edge 0.8 mm, Psi 16 deg" in out
+    assert levels[1] > levels[0]
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--trailing-edge-thickness", "-1e-3"], "--trailing-edge-thickness"),
+    (["--trailing-edge-angle", "120"], "--trailing-edge-angle")])
+def test_bad_trailing_edge_exits_2(blade, capsys, extra, message):
+    code, _, err = run(capsys, "noise", str(blade), "--observer", "-10", "0", "0", *extra)
+    assert code == 2 and message in err and len(err.strip().splitlines()) == 1
+
+
 @pytest.mark.parametrize("observer, message", [
     (["0.1", "0.1", "0"], "inside the rotor"), (["nan", "0", "-5"], "not finite")])
 def test_bad_observer_is_one_line(blade, capsys, observer, message):

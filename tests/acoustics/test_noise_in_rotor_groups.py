@@ -54,6 +54,22 @@ def test_bild_totals_into_oaspl_dba(mode):
     assert_totals_match(data, atol=1e-8, rtol=1e-7)
 
 
+@pytest.mark.parametrize("mode", ["fwd", "rev"])
+def test_bild_totals_with_a_blunt_trailing_edge(mode):
+    """With the bluntness noise on (trailing_edge_thickness > 0, Psi of the option noise_trailing_edge_angle), the
+    totals of oaspl_dba, also with respect to the thickness, every pair against cs; and the noise is louder."""
+    group = BILDGroup(num_nodes=2, num_radial=6, num_blades=2, noise_observers=OBSERVERS, noise_harmonics=4,
+                      noise_trailing_edge_angle=16.0)
+    sharp = _run(group, DESIGN, mode).get_val("oaspl")
+    thickness = np.array([[1.2e-3] * 6, [0.4e-3] * 3 + [0.8e-3] * 3])
+    prob = _run(BILDGroup(num_nodes=2, num_radial=6, num_blades=2, noise_observers=OBSERVERS, noise_harmonics=4,
+                          noise_trailing_edge_angle=16.0), dict(DESIGN, trailing_edge_thickness=thickness), mode)
+    assert np.all(prob.get_val("oaspl") > sharp)
+    data = prob.check_totals(of=["oaspl_dba"], wrt=["v_axial", "rpm", "ref_chord", "trailing_edge_thickness"],
+                             method="cs", out_stream=None)
+    assert_totals_match(data, atol=1e-8, rtol=1e-7)
+
+
 def test_bild_stations_see_the_design():
     """The noise group reads BILD's own outputs: alpha = alpha* at every station, BILD's loads and chord."""
     prob = _run(BILDGroup(num_nodes=2, num_radial=6, noise_observers=OBSERVERS), DESIGN)

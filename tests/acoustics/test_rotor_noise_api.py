@@ -110,3 +110,24 @@ def test_plots(noise, design, tmp_path):
     plot_noise_spectrum(noise, tmp_path / "spectrum.png")
     plot_directivity(rotor_noise(design, arc, num_harmonics=2, band_frequencies=BANDS), tmp_path / "arc.png")
     assert (tmp_path / "spectrum.png").stat().st_size > 1000 and (tmp_path / "arc.png").stat().st_size > 1000
+
+
+def test_blunt_trailing_edge(design):
+    """A trailing-edge thickness adds BPM's bluntness noise and nothing else; 0 (the default) adds none; per
+    station or one value alike; bad values are one line."""
+    sharp = rotor_noise(design, OBSERVERS, num_harmonics=2, band_frequencies=BANDS)
+    assert np.all(sharp.source_pressure_squared["bluntness"] == 0.0)
+    blunt = rotor_noise(design, OBSERVERS, num_harmonics=2, band_frequencies=BANDS, trailing_edge_thickness=5e-4)
+    assert np.all(blunt.source_pressure_squared["bluntness"] > 0.0)
+    for name in BROADBAND_SOURCES[:-1]:
+        np.testing.assert_array_equal(blunt.source_pressure_squared[name], sharp.source_pressure_squared[name])
+    per_station = rotor_noise(design, OBSERVERS, num_harmonics=2, band_frequencies=BANDS,
+                              trailing_edge_thickness=np.full(design.chord.size, 5e-4))
+    np.testing.assert_array_equal(per_station.band_spl, blunt.band_spl)
+    assert "trailing edge 0.5 mm, Psi 14 deg" in blunt.summary()
+    for bad, message in ((-1e-3, "trailing_edge_thickness must be finite and >= 0"),
+                         (np.ones(3) * 1e-3, "one value or one per station")):
+        with pytest.raises(ValueError, match=message):
+            rotor_noise(design, OBSERVERS, trailing_edge_thickness=bad)
+    with pytest.raises(ValueError, match="trailing_edge_angle must be between 0 and 30"):
+        rotor_noise(design, OBSERVERS, trailing_edge_thickness=1e-3, trailing_edge_angle=-2.0)

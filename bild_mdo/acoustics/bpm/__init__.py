@@ -2,8 +2,11 @@
 
 Pure, vectorised, complex-safe functions of a blade segment that also accept
 :class:`~bild_mdo.utils.jet.Jet` values (exact first partials): boundary layer, directivity, TBL-TE and
-separation, LBL-VS, tip vortex, and :func:`segment_spectra` that combines them for one segment.
+separation, LBL-VS, tip vortex, trailing-edge bluntness, and :func:`segment_spectra` that combines the
+first four for one segment.
 """
+from bild_mdo.acoustics.bpm.bluntness import (NACA0012_TRAILING_EDGE_ANGLE, bluntness_pressure_squared,
+                                              peak_strouhal_3, shape_g4, shape_g5, shape_g5_psi14)
 from bild_mdo.acoustics.bpm.boundary_layer import (BoundaryLayer, boundary_layer, pressure_side_ratios,
                                                    suction_side_ratios, zero_angle_thickness)
 from bild_mdo.acoustics.bpm.directivity import (high_frequency_directivity, high_frequency_directivity_from_cosines,
@@ -21,7 +24,9 @@ from bild_mdo.acoustics.bpm.turbulent_trailing_edge import (amplitude_delta_k1, 
                                                             spectral_shape_a, spectral_shape_b, stall_angle_deg,
                                                             tbl_te_pressure_squared)
 
-__all__ = ["BoundaryLayer", "boundary_layer", "pressure_side_ratios", "suction_side_ratios", "zero_angle_thickness",
+__all__ = ["NACA0012_TRAILING_EDGE_ANGLE", "bluntness_pressure_squared", "peak_strouhal_3", "shape_g4", "shape_g5",
+           "shape_g5_psi14", "BoundaryLayer", "boundary_layer", "pressure_side_ratios", "suction_side_ratios",
+           "zero_angle_thickness",
            "high_frequency_directivity", "high_frequency_directivity_from_cosines", "low_frequency_directivity",
            "low_frequency_directivity_from_cosines", "moving_source_directivities", "lbl_vs_pressure_squared",
            "peak_strouhal", "reference_reynolds", "reference_strouhal", "shape_g1", "shape_g2", "shape_g3",
