@@ -214,7 +214,8 @@ class BatchedCSCJacobian(CSCJacobian):
                 factor = None
                 if any(f is not None for f in factors):
                     factor = np.repeat([1.0 if f is None else f for f in factors], sizes)
-                shared = np.unique(index).size != index.size
+                # An entry written by two sub-Jacobians (bincount: O(n), where np.unique sorts).
+                shared = bool(index.size) and int(np.bincount(index).max()) > 1
                 plan = (subjacs, index, factor, shared)
         plans[id(matrixobj)] = (subjacs, factors, plan)
         return plan

@@ -31,6 +31,25 @@ def _chain(x, fx, dfx):
     return fx
 
 
+#: The one seed of :func:`univariate`'s inner evaluation (a name no caller uses).
+_UNIVARIATE_SEED = "__univariate__"
+
+
+def univariate(function, x):
+    """``function(x)`` for an elementwise function of ``x`` alone, with the partials of ``x`` chained once.
+
+    With a jet ``x`` of many partials, ``function`` runs on its value with a single seed and its derivative
+    multiplies each partial of ``x`` once: the same value and partials as ``function(x)``, without carrying
+    every partial through every operation of ``function``.
+    """
+    if not isinstance(x, Jet):
+        return function(x)
+    inner = function(Jet(x.v, {_UNIVARIATE_SEED: 1.0}))
+    if not isinstance(inner, Jet):
+        return inner
+    return _chain(x, inner.v, inner.partial(_UNIVARIATE_SEED))
+
+
 def log10(x):
     """``log10(x)`` for ``x > 0``."""
     v = value(x)

@@ -17,7 +17,7 @@ import numpy as np
 
 from bild_mdo.acoustics.bands import REFERENCE_PRESSURE
 from bild_mdo.acoustics.bpm.boundary_layer import boundary_layer
-from bild_mdo.acoustics.bpm.jet_math import log10, piecewise, pow10, power, sign_abs, sqrt
+from bild_mdo.acoustics.bpm.jet_math import log10, piecewise, pow10, power, sign_abs, sqrt, univariate
 
 _DEG = 180.0 / np.pi
 
@@ -90,7 +90,8 @@ def lbl_vs_pressure_squared(frequency, chord, span, speed, mach, alpha, reynolds
     alpha_deg = alpha * _DEG
     delta_p = boundary_layer(chord, reynolds, alpha, tripped=False).delta_p
     st = frequency * delta_p / speed  # Eq. (54)
-    level = (shape_g1(st / peak_strouhal(reynolds, alpha_deg)) + shape_g2(reynolds / reference_reynolds(alpha_deg))
-             + shape_g3(alpha_deg))
+    # G_1 is evaluated on every band, azimuth and station: with jets, once with one seed (jet_math.univariate).
+    level = (univariate(shape_g1, st / peak_strouhal(reynolds, alpha_deg))
+             + shape_g2(reynolds / reference_reynolds(alpha_deg)) + shape_g3(alpha_deg))
     scale = REFERENCE_PRESSURE ** 2 * delta_p * power(mach, 5.0) * span * d_high / (distance * distance)
     return scale * pow10(0.1 * level)

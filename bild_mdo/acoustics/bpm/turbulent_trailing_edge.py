@@ -20,7 +20,8 @@ import numpy as np
 
 from bild_mdo.acoustics.bands import REFERENCE_PRESSURE
 from bild_mdo.acoustics.bpm.boundary_layer import boundary_layer
-from bild_mdo.acoustics.bpm.jet_math import log10, piecewise, pow10, power, real_value, sign_abs, sqrt, where
+from bild_mdo.acoustics.bpm.jet_math import (log10, piecewise, pow10, power, real_value, sign_abs, sqrt, univariate,
+                                             where)
 
 _DEG = 180.0 / np.pi
 _P_REF2 = REFERENCE_PRESSURE ** 2
@@ -78,12 +79,14 @@ def _reynolds_blend(reynolds, low, amplitude, high):
 
 
 def _shape(ratio, reynolds, shape_min, shape_max, low, amplitude, high):
-    x = sign_abs(log10(ratio))  # Eqs. (37), (43)
+    # The shapes are functions of x alone, evaluated on every band, azimuth and station: with jets, each
+    # runs with one seed and chains its derivative to the partials of x (jet_math.univariate).
+    x = univariate(lambda r: sign_abs(log10(r)), ratio)  # Eqs. (37), (43)
     x0 = _reynolds_blend(reynolds, low, amplitude, high)
     min0, max0 = shape_min(x0), shape_max(x0)
     interpolation = (-20.0 - min0) / (max0 - min0)  # Eqs. (39), (45)
-    lo = shape_min(x)
-    return lo + interpolation * (shape_max(x) - lo)  # Eqs. (40), (46)
+    lo = univariate(shape_min, x)
+    return lo + interpolation * (univariate(shape_max, x) - lo)  # Eqs. (40), (46)
 
 
 def spectral_shape_a(strouhal_ratio, reynolds):
