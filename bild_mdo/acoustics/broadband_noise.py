@@ -23,6 +23,12 @@ The tip vortex (Eq. 61, a rounded or flat tip) takes the chord, ``W``, ``phi`` a
 outermost station (``alpha'_TIP = tip_alpha_correction * alpha``, Eq. 65) and sits at the tip radius ``R``.
 LBL-VS exists only with an untripped boundary layer.
 
+An observer on the rotor axis hears every azimuth alike (the rotor, its flow and the observer are symmetric
+about the axis): where every observer of every design is on the axis (``y = z = 0`` exactly) and
+``num_azimuth >= 2``, one azimuth is evaluated for all, the same mean to rounding, and the partials with
+respect to the observers' ``y`` and ``z`` are their exact value there, 0 (the azimuth sum of a first-order
+change is a sum of ``cos`` and ``sin`` over equal steps).
+
 Approximations: far field per segment (point-source directivities at ``r_e``); the azimuths are averaged
 uniformly in source time (the observer-time weight ``1 - M_r`` of each emission interval is left out); the
 source sits on the blade's pitch-change axis (the quarter chord) with BPM's chord axis along the section's
@@ -227,7 +233,7 @@ class BroadbandNoiseComp(om.ExplicitComponent):
         o = self.options
         nr = o["num_radial"]
         tripped = o["boundary_layer"] == "tripped"
-        psi = 2.0 * np.pi * np.arange(o["num_azimuth"]) / o["num_azimuth"]
+        psi = 2.0 * np.pi * np.arange(self._azimuths(inputs)) / o["num_azimuth"]
         azimuth = psi[None, None, None, :, None]
         freq = np.asarray(o["band_frequencies"], dtype=float)
         per_node = {k: inputs[k][:, None, None, None, None] for k in _NODE}
@@ -292,9 +298,14 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                                         self.options["trailing_edge_angle"], tripped)
         return where(station(blunt), p2, 0.0 * p2)
 
+    def _azimuths(self, inputs):
+        """Azimuths evaluated: 1 where every observer is on the rotor axis (module docstring), else num_azimuth."""
+        n = self.options["num_azimuth"]
+        return 1 if n >= 2 and np.all(inputs["observer_position"][..., 1:] == 0.0) else n
+
     def compute(self, inputs, outputs):
         nn, _, no, ns, nb = self._sizes()
-        scale = self.options["num_blades"] / self.options["num_azimuth"]
+        scale = self.options["num_blades"] / self._azimuths(inputs)
         spectra, _, _ = self._evaluate(inputs, jets=False)
         out = np.zeros((nn, no, ns, nb), dtype=inputs["chord"].dtype)
         for s, p2 in enumerate(spectra):
@@ -306,7 +317,8 @@ class BroadbandNoiseComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         self._check_memory(PARTIALS_BYTES, "the broadband noise's partials")
         nn, nr, no, ns, nb = self._sizes()
-        scale = self.options["num_blades"] / self.options["num_azimuth"]
+        on_axis = self._azimuths(inputs) != self.options["num_azimuth"]
+        scale = self.options["num_blades"] / self._azimuths(inputs)
         spectra, (seg, geo), (tip, geo_tip) = self._evaluate(inputs, jets=True)
         full = {name: np.zeros((nn, no, ns, nb, nr)) for name in _STATION}
         full.update({name: np.zeros((nn, no, ns, nb)) for name in _NODE})
@@ -322,6 +334,8 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                     full[name][:, :, s] = np.moveaxis(x, 2, 3)  # [nn, no, nr, nb] -> [nn, no, nb, nr]
                 else:
                     full[name][:, :, s] = x
+        if on_axis:
+            full["observer_position"][..., 1:] = 0.0  # their exact value on the axis (module docstring)
         for (of, wrt), (_, _, mask) in self._pattern_cache.items():
             if np.any(mask):
                 values = full[wrt] if of == "broadband_source_pressure_squared" else full[wrt].sum(axis=2)
