@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from bild_mdo import validation
-from bild_mdo.acoustics.bpm.bluntness import MAX_TRAILING_EDGE_ANGLE
+from bild_mdo.acoustics.bpm.bluntness import MAX_TRAILING_EDGE_ANGLE, NACA0012_TRAILING_EDGE_ANGLE
 from bild_mdo.acoustics.rotor_noise_group import check_observers
 from bild_mdo.bem.analyze import analyze_rotor
 from bild_mdo.cli.files import AIRFOIL_HELP, airfoil_polar, figure_file
@@ -40,7 +40,7 @@ def add_noise_arguments(parser):
     parser.add_argument("--trailing-edge-thickness", type=float, default=0.0, metavar="H",
                         help="trailing-edge thickness [m] at every station, for the BPM bluntness noise "
                              "(default 0: a sharp edge, no bluntness noise)")
-    parser.add_argument("--trailing-edge-angle", type=float, default=14.0, metavar="PSI",
+    parser.add_argument("--trailing-edge-angle", type=float, default=NACA0012_TRAILING_EDGE_ANGLE, metavar="PSI",
                         help="solid angle between the surfaces at the trailing edge [deg] (default 14, NACA 0012; "
                              "at most 30)")
     parser.add_argument("--rpm", type=float, default=None, metavar="RPM",

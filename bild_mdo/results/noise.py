@@ -331,7 +331,8 @@ def rotor_noise(result, observers, num_harmonics=10, boundary_layer="tripped", i
     description = (f"B = {blades}, {rpm_text}, tip Mach {np.max(tip_mach):.3g}, radius {np.max(node['radius']):.4g} m, "
                    f"{int(num_harmonics)} harmonics, "
                    + (f"{bands.size} bands ({boundary_layer} boundary layer" + (
-                       f", trailing edge {np.max(thickness) * 1e3:.3g} mm, Psi {float(trailing_edge_angle):g} deg)"
+                       f", trailing edge {'up to ' if np.ptp(thickness) > 0 else ''}{np.max(thickness) * 1e3:.3g} mm, "
+                       f"Psi {float(trailing_edge_angle):g} deg)"
                        if np.any(thickness > 0.0) else ")") if include_broadband else "no broadband"))
     return NoiseResult(
         observers=positions, tonal_frequency=take("tonal_frequency", None),
@@ -355,7 +356,11 @@ def _trailing_edge(thickness, angle, shape):
                          f"{shape}) in metres, got {np.shape(thickness)}") from None
     if not (np.all(np.isfinite(h)) and np.all(h >= 0.0)):
         raise ValueError(f"trailing_edge_thickness must be finite and >= 0 (m), got minimum {np.nanmin(h):.6g}")
-    if not (np.isfinite(angle) and 0.0 <= float(angle) <= MAX_TRAILING_EDGE_ANGLE):
+    try:
+        value = float(angle)
+    except (TypeError, ValueError):
+        value = float("nan")
+    if not 0.0 <= value <= MAX_TRAILING_EDGE_ANGLE:
         raise ValueError(f"trailing_edge_angle must be between 0 and {MAX_TRAILING_EDGE_ANGLE:g} deg (14 for a "
                          f"NACA 0012), got {angle!r}")
     return h
