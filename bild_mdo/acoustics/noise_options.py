@@ -3,7 +3,8 @@
 :func:`declare_noise_options` gives :class:`~bild_mdo.bild.bild_group.BILDGroup`,
 :class:`~bild_mdo.bem.bem_group.BEMAnalysisGroup` and
 :class:`~bild_mdo.multipoint.multipoint_group.MultipointRotorGroup` the same options
-(``noise_observers``, ``noise_harmonics``, ``noise_boundary_layer``, ``noise_trailing_edge_angle``);
+(``noise_observers``, ``noise_harmonics``, ``noise_boundary_layer``, ``noise_trailing_edge_angle``,
+``noise_azimuths``);
 :func:`~bild_mdo.acoustics.rotor_noise_group.make_noise_group` builds the group they ask for.
 """
 from __future__ import annotations
@@ -84,6 +85,9 @@ def declare_noise_options(options):
                     upper=MAX_TRAILING_EDGE_ANGLE,
                     desc="solid angle Psi (deg) of the trailing edge, bluntness noise (with noise_observers and "
                          "the input trailing_edge_thickness)")
+    options.declare("noise_azimuths", types=int, default=24, lower=1,
+                    desc="azimuth samples of the broadband noise (with noise_observers; fewer are coarser, most "
+                         "near the disc plane)")
 
 
 #: Outputs a rotor group promotes from its ``noise`` subsystem.

@@ -96,6 +96,8 @@ class RotorNoiseGroup(om.Group):
                              desc="BPM boundary-layer thickness fits: 'tripped' or 'untripped'")
         self.options.declare("include_broadband", types=bool, default=True,
                              desc="add the BPM broadband self-noise (False: tones only)")
+        self.options.declare("num_azimuth", types=int, default=24, lower=1,
+                             desc="azimuth samples of the blade around the disc, of the broadband noise")
         self.options.declare("trailing_edge_angle", types=float, default=NACA0012_TRAILING_EDGE_ANGLE, lower=0.0,
                              upper=MAX_TRAILING_EDGE_ANGLE,
                              desc="solid angle Psi (deg) of the trailing edge, of the bluntness noise")
@@ -121,7 +123,8 @@ class RotorNoiseGroup(om.Group):
             self.add_subsystem("broadband", BroadbandNoiseComp(**size, **observers, num_blades=opts["num_blades"],
                                                                band_frequencies=opts["band_frequencies"],
                                                                boundary_layer=opts["boundary_layer"],
-                                                               trailing_edge_angle=opts["trailing_edge_angle"]),
+                                                               trailing_edge_angle=opts["trailing_edge_angle"],
+                                                               num_azimuth=opts["num_azimuth"]),
                                promotes_inputs=["*"], promotes_outputs=list(BROADBAND_OUTPUTS[:-1]))
             totals_inputs.append("broadband_pressure_squared")
         outputs = ["tonal_spl"] + (["band_spl"] if opts["include_broadband"] else []) + list(LEVEL_OUTPUTS)
@@ -143,4 +146,5 @@ def make_noise_group(options, num_nodes, num_radial, num_blades, polar):
     return RotorNoiseGroup(num_nodes=num_nodes, num_radial=num_radial, num_observers=observers.shape[0],
                            num_harmonics=options["noise_harmonics"], num_blades=num_blades,
                            boundary_layer=options["noise_boundary_layer"], polar=polar, observers=observers,
-                           trailing_edge_angle=options["noise_trailing_edge_angle"])
+                           trailing_edge_angle=options["noise_trailing_edge_angle"],
+                           num_azimuth=options["noise_azimuths"])

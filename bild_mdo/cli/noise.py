@@ -43,6 +43,9 @@ def add_noise_arguments(parser):
     parser.add_argument("--trailing-edge-angle", type=float, default=NACA0012_TRAILING_EDGE_ANGLE, metavar="PSI",
                         help="solid angle between the surfaces at the trailing edge [deg] (default 14, NACA 0012; "
                              "at most 30)")
+    parser.add_argument("--azimuths", type=int, default=24, metavar="N",
+                        help="azimuth samples of the broadband noise [-] (default 24; fewer are coarser, most near "
+                             "the disc plane)")
     parser.add_argument("--rpm", type=float, default=None, metavar="RPM",
                         help="rotor speed [rpm] (default: the file's design rpm)")
     parser.add_argument("--v-axial", type=float, default=None, metavar="V",
@@ -89,6 +92,7 @@ def run_noise(args, out):
     """
     observers = check_observers(args.observer)
     harmonics = validation.integer("--harmonics", args.harmonics, minimum=1)
+    azimuths = validation.integer("--azimuths", args.azimuths, minimum=1)
     for option, value in (("--rpm", args.rpm), ("--v-axial", args.v_axial), ("--altitude", args.altitude)):
         if value is not None:
             validation.real_array(option, value, ndim=(0,))
@@ -115,7 +119,8 @@ def run_noise(args, out):
     analysis = analyze_rotor(twist=geometry.twist, radii=geometry.radii, polar=polar, altitude=altitude,
                              loss_model=geometry.loss_model or "tip_hub", **rotor)
     boundary_layer = "untripped" if args.untripped else "tripped"
-    edge = dict(trailing_edge_thickness=args.trailing_edge_thickness, trailing_edge_angle=args.trailing_edge_angle)
+    edge = dict(trailing_edge_thickness=args.trailing_edge_thickness, trailing_edge_angle=args.trailing_edge_angle,
+                num_azimuth=azimuths)
     noise = rotor_noise(analysis, observers, num_harmonics=harmonics, boundary_layer=boundary_layer, polar=polar,
                         **edge, **rotor)
     print(f"geometry: {args.geometry}: {len(geometry.radii)} stations, B = {geometry.num_blades}, "

@@ -119,13 +119,13 @@ def test_invariants():
     np.testing.assert_allclose(_run(farther)[1] / _run(far)[1], 0.25, rtol=2e-3)
 
 
-def _itr_levels():
+def _itr_levels(num_azimuth=24):
     case = itr_stations()
     f = 1000.0 * 10.0 ** (np.arange(-7, 19) / 10.0)  # 200 Hz ... 63 kHz, the range of the paper's Fig. 22b
     # Fig. 22's caption: bluntness thickness 0.8 mm and trailing-edge angle 16 deg.
     comp = BroadbandNoiseComp(num_nodes=1, num_radial=case["radii"].shape[1], num_observers=3,
                               num_blades=case["num_blades"], band_frequencies=f, tip_shape="flat",
-                              trailing_edge_angle=16.0)
+                              trailing_edge_angle=16.0, num_azimuth=num_azimuth)
     prob = om.Problem(reports=False)
     prob.model.add_subsystem("noise", comp, promotes=["*"])
     prob.setup()
@@ -192,6 +192,17 @@ def test_itr_hover_figure22b_bluntness():
     err = np.interp(np.log(x), np.log(f), levels[BROADBAND_SOURCES.index("bluntness")]) - y
     assert np.max(np.abs(err[x < 21e3])) < 0.9
     assert -4.6 < err[-1] < -4.0
+
+
+def test_azimuth_convergence_on_the_itr():
+    """The azimuth mean is the trapezoidal rule of a smooth periodic function, which converges geometrically:
+    at the ITR's microphone 5 (2.27 m, 2.9 radii; 200 Hz - 63 kHz), every band of every mechanism with 24
+    azimuths (the default) within 0.004 dB of 48 (measured 0.0036), with 12 within 0.06 dB (0.053), with 6
+    not (3.05 dB)."""
+    levels = {n: _itr_levels(num_azimuth=n)[1] for n in (6, 12, 24, 48)}
+    assert np.max(np.abs(levels[24] - levels[48])) < 0.004
+    assert np.max(np.abs(levels[12] - levels[48])) < 0.06
+    assert np.max(np.abs(levels[6] - levels[48])) > 1.0
 
 
 def test_an_observer_in_the_disc_plane_hears_the_pitched_chords():

@@ -59,7 +59,7 @@ def test_blunt_trailing_edge(blade, capsys):
 
 @pytest.mark.parametrize("extra, message", [
     (["--trailing-edge-thickness", "-1e-3"], "--trailing-edge-thickness"),
-    (["--trailing-edge-angle", "120"], "--trailing-edge-angle")])
+    (["--trailing-edge-angle", "120"], "--trailing-edge-angle"), (["--azimuths", "0"], "--azimuths")])
 def test_bad_trailing_edge_exits_2(blade, capsys, extra, message):
     code, _, err = run(capsys, "noise", str(blade), "--observer", "-10", "0", "0", *extra)
     assert code == 2 and message in err and len(err.strip().splitlines()) == 1

@@ -59,8 +59,12 @@ def test_bild_totals_with_a_blunt_trailing_edge(mode):
     """With the bluntness noise on (trailing_edge_thickness > 0, Psi of the option noise_trailing_edge_angle), the
     totals of oaspl_dba, also with respect to the thickness, every pair against cs; and the noise is louder."""
     group = BILDGroup(num_nodes=2, num_radial=6, num_blades=2, noise_observers=OBSERVERS, noise_harmonics=4,
-                      noise_trailing_edge_angle=16.0)
-    sharp = _run(group, DESIGN, mode).get_val("oaspl")
+                      noise_trailing_edge_angle=16.0, noise_azimuths=12)
+    sharp_prob = _run(group, DESIGN, mode)
+    assert sharp_prob.model.rotor.noise.broadband.options["num_azimuth"] == 12
+    assert sharp_prob.model.rotor.noise.broadband.options["trailing_edge_angle"] == 16.0
+    sharp = _run(BILDGroup(num_nodes=2, num_radial=6, num_blades=2, noise_observers=OBSERVERS, noise_harmonics=4,
+                           noise_trailing_edge_angle=16.0), DESIGN, mode).get_val("oaspl")
     thickness = np.array([[1.2e-3] * 6, [0.4e-3] * 3 + [0.8e-3] * 3])
     prob = _run(BILDGroup(num_nodes=2, num_radial=6, num_blades=2, noise_observers=OBSERVERS, noise_harmonics=4,
                           noise_trailing_edge_angle=16.0), dict(DESIGN, trailing_edge_thickness=thickness), mode)

@@ -131,3 +131,19 @@ def test_blunt_trailing_edge(design):
             rotor_noise(design, OBSERVERS, trailing_edge_thickness=bad)
     with pytest.raises(ValueError, match="trailing_edge_angle must be between 0 and 30"):
         rotor_noise(design, OBSERVERS, trailing_edge_thickness=1e-3, trailing_edge_angle=-2.0)
+
+
+def test_azimuths(design):
+    """num_azimuth reaches the broadband noise.  The azimuth mean converges geometrically, slowest near the disc
+    plane, where the Doppler factor and the directivity change most around the disc: on this rotor (tip Mach
+    0.31) the default 24 azimuths are within 0.0004 dB of 96 at the observers below it and 0.10 dB at the
+    third, 3 deg above the disc plane (measured); 12 azimuths within 0.003 dB below, but 1.35 dB off there.
+    0 is one line."""
+    def bands(n):
+        return rotor_noise(design, OBSERVERS, num_harmonics=2, band_frequencies=BANDS, num_azimuth=n).band_spl
+    reference, default, coarse = bands(96), bands(24), bands(12)
+    np.testing.assert_allclose(default[:2], reference[:2], atol=1e-3)
+    np.testing.assert_allclose(coarse[:2], reference[:2], atol=5e-3)
+    assert np.max(np.abs(default[2] - reference[2])) < 0.12 < 1.0 < np.max(np.abs(coarse[2] - reference[2]))
+    with pytest.raises(ValueError, match="num_azimuth must be an integer >= 1"):
+        rotor_noise(design, OBSERVERS, num_azimuth=0)
