@@ -15,8 +15,8 @@ over azimuth, summed over stations and times the number of blades::
     p2[b] = B / N_psi  sum_psi sum_stations p2_segment(f_b (1 - M_r), r_e, D_h, D_l)
 
 Trailing-edge bluntness vortex shedding (TEB-VS, Eq. 70) needs the trailing-edge thickness ``h`` of each
-station (input ``trailing_edge_thickness``, m; default 0, a sharp edge, which makes no bluntness noise:
-``p2 ~ h^2.75`` as ``h -> 0``) and the solid angle ``Psi`` of the edge (option ``trailing_edge_angle``, deg,
+station (input ``trailing_edge_thickness``, m; default 0, a sharp edge, which makes no bluntness noise: the
+level vanishes as ``h -> 0``, faster than ``h^2.75``; measured exponents 4.3 at ``Psi = 14``, 21 at 0) and the solid angle ``Psi`` of the edge (option ``trailing_edge_angle``, deg,
 default 14, a NACA 0012's); :mod:`~bild_mdo.acoustics.bpm.bluntness`.
 
 The tip vortex (Eq. 61, a rounded or flat tip) takes the chord, ``W``, ``phi`` and ``alpha`` of the
@@ -286,9 +286,10 @@ class BroadbandNoiseComp(om.ExplicitComponent):
     def _bluntness(self, inputs, station, seg, g, f_src, tripped, jets):
         """TEB-VS of the stations with a blunt trailing edge (``h > 0``), zero at the others; None if none is."""
         h = inputs["trailing_edge_thickness"]
-        if np.any(np.real(h) < 0.0) or not np.all(np.isfinite(h)):
+        bad = np.argwhere(~(np.isfinite(h) & (np.real(h) >= 0.0)))
+        if bad.size:
             raise om.AnalysisError(f"{self.msginfo}: trailing_edge_thickness must be finite and >= 0 (m), got "
-                                   f"{np.real(h).min():.6g} m")
+                                   f"{np.real(h[tuple(bad[0])]):.6g} m at node {bad[0][0]}, station {bad[0][1]}")
         blunt = np.real(h) > 0.0
         if not np.any(blunt):
             return None

@@ -30,7 +30,8 @@ rated power (the pitch angle itself is not computed here:
 BEM power of the blade at every wind speed); the design ``C_P`` holds
 at every wind speed of region 2 (the Reynolds number of the sections changes with the wind
 speed; the rotor-speed limit that usually ends region 2 early is not
-modelled here: ``PowerCurveGroup(tip_speed_limit=True)`` models it); no drivetrain or availability losses; the year is 8760 hours.
+modelled here: ``PowerCurveGroup(tip_speed_limit=True)`` models it); no drivetrain
+or availability losses; the year is 8760 hours.
 
 Options
 -------

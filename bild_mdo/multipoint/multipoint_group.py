@@ -198,7 +198,8 @@ class MultipointRotorGroup(om.Group):
             return
         noise = self._get_subsystem("noise")
         names = {meta["prom_name"] for meta in noise.get_io_metadata(iotypes="input").values()}
-        promoted = [name for name in ("observer_position", "v_axial", "rpm") if name in names]
+        promoted = [name for name in ("observer_position", "v_axial", "rpm", "trailing_edge_thickness")
+                    if name in names]
         self.promotes("noise", inputs=promoted)
         for name in sorted(names & set(_NOISE_SOURCES)):
             self.connect(_NOISE_SOURCES[name], f"noise.{name}")

@@ -359,15 +359,11 @@ def _trailing_edge(thickness, angle, shape):
     except (TypeError, ValueError):
         raise ValueError(f"trailing_edge_thickness must be one value or one per station (shape {shape[1:]} or "
                          f"{shape}) in metres, got {np.shape(thickness)}") from None
-    if not (np.all(np.isfinite(h)) and np.all(h >= 0.0)):
-        raise ValueError(f"trailing_edge_thickness must be finite and >= 0 (m), got minimum {np.nanmin(h):.6g}")
-    try:
-        value = float(angle)
-    except (TypeError, ValueError):
-        value = float("nan")
-    if not 0.0 <= value <= MAX_TRAILING_EDGE_ANGLE:
-        raise ValueError(f"trailing_edge_angle must be between 0 and {MAX_TRAILING_EDGE_ANGLE:g} deg (14 for a "
-                         f"NACA 0012), got {angle!r}")
+    bad = np.argwhere(~(np.isfinite(h) & (h >= 0.0)))
+    if bad.size:
+        raise ValueError(f"trailing_edge_thickness must be finite and >= 0 (m), got {h[tuple(bad[0])]:.6g} at "
+                         f"design {bad[0][0]}, station {bad[0][1]}")
+    validation.in_range("trailing_edge_angle", angle, 0.0, MAX_TRAILING_EDGE_ANGLE, units="deg", ndim=(0,))
     return h
 
 

@@ -16,7 +16,7 @@ rises at 183 per decade, not Eq. (79)'s 268.3 (the value of m for 1.13-1.15), so
 drawn from the printed equation there.  Figures 98, 99: every band below the report's peak band within
 1.1 dB (the rising flank); the peak in the same band on four panels (there within 0.99-1.45 dB), one band
 lower on 98c and 99b (there 2.7 and 3.0 dB below); the bands past the peak, on the falling flank (-15.5 dB
-per band), 2.8-5.7 dB below the report: a peak frequency 5-8 % lower than the report's.  AcousticAnalogies.jl, an independent implementation of the same equations, shows the same
+per band), 2.8-5.7 dB below the report: on that slope, as if the peak frequency were a few per cent lower.  AcousticAnalogies.jl, an independent implementation of the same equations, shows the same
 ("last two points are off", its test/broadband_source_element_tests.jl).
 """
 import numpy as np
@@ -82,7 +82,8 @@ def test_shape_g5_caps_and_interpolation():
         r = np.full_like(e, ratio)
         g14 = shape_g5(r, 14.0, e)
         g0 = shape_g5(r, 0.0, e)
-        cap = shape_g5_psi14(np.full_like(e, 0.25), np.log10(e))
+        # The cap: the Psi = 14 shape at 0.25 on the listing's branch 'ratio >= 0.25' of Eq. (78).
+        cap = shape_g5_psi14(np.full_like(e, np.nextafter(0.25, 1.0)), np.log10(e))
         assert np.all(g14 <= 0.0) and np.all(g0 <= 0.0) and np.all(g14 <= cap + 1e-12)
         raw = shape_g5_psi14(r, np.log10(e)), shape_g5_psi14(6.724 * r * r - 4.019 * r + 1.107, np.log10(e))
         uncapped = raw[1] + 0.0714 * 7.0 * (raw[0] - raw[1])

@@ -128,3 +128,8 @@ def test_pure_piecewise_evaluates_each_branch_at_its_own_points_only(name, monke
         np.testing.assert_array_equal(values, function(argument))
         assert values.dtype == argument.dtype and values.shape == x.shape
         assert np.isnan(values[0, 0, 0]) and np.count_nonzero(np.isnan(values)) == 1
+    # -inf belongs to the first branch, +inf to the last, on both paths.
+    edges, branches = [0.0, 1.0], [lambda v: np.full_like(v, -1.0), np.zeros_like, lambda v: np.full_like(v, 1.0)]
+    x = np.array([-np.inf, 0.5, np.inf])
+    for pure in (True, False):
+        np.testing.assert_array_equal(general(x, edges, branches, pure=pure), [-1.0, 0.0, 1.0])

@@ -80,6 +80,9 @@ def test_observers_on_the_axis():
     on_axis, _ = _run(values, num_azimuth=24)
     near = dict(values, observer_position=values["observer_position"] + np.array([0.0, 1e-9, 0.0]))
     full, _ = _run(near, num_azimuth=24)
+    # The shortcut runs (one azimuth) on the axis only; a single azimuth asked for stays one.
+    assert _comp(num_azimuth=24)._azimuths(values) == 1 and _comp(num_azimuth=24)._azimuths(near) == 24
+    assert _comp(num_azimuth=1)._azimuths(values) == 1
     np.testing.assert_allclose(on_axis, full, rtol=1e-7)
     check_component_partials(_comp(num_azimuth=8), values, atol=1e-10, rtol=1e-7)
 
@@ -202,7 +205,7 @@ def test_azimuth_convergence_on_the_itr():
     levels = {n: _itr_levels(num_azimuth=n)[1] for n in (6, 12, 24, 48)}
     assert np.max(np.abs(levels[24] - levels[48])) < 0.004
     assert np.max(np.abs(levels[12] - levels[48])) < 0.06
-    assert np.max(np.abs(levels[6] - levels[48])) > 1.0
+    assert np.max(np.abs(levels[6] - levels[48])) > 2.5
 
 
 def test_an_observer_in_the_disc_plane_hears_the_pitched_chords():

@@ -111,6 +111,7 @@ def test_multipoint_totals_into_oaspl_dba():
     prob = _run(group, dict(design_rpm=[900.0], v_axial=[0.0, 5.0], rpm=[900.0, 1000.0]), "rev")
     assert prob.get_val("oaspl_dba").shape == (2, 3)
     np.testing.assert_allclose(prob.get_val("noise.chord")[1], prob.get_val("chord")[0])
+    assert prob.get_val("trailing_edge_thickness").shape == (2, 5)  # promoted, as in the other groups
     data = prob.check_totals(of=["oaspl_dba"], wrt=["design_rpm", "radius", "ref_chord", "rpm", "v_axial"],
                              method="cs", out_stream=None)
     assert_totals_match(data, atol=1e-8, rtol=1e-7)

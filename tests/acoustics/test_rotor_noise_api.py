@@ -129,8 +129,11 @@ def test_blunt_trailing_edge(design):
                          (np.ones(3) * 1e-3, "one value or one per station")):
         with pytest.raises(ValueError, match=message):
             rotor_noise(design, OBSERVERS, trailing_edge_thickness=bad)
-    with pytest.raises(ValueError, match="trailing_edge_angle must be between 0 and 30"):
-        rotor_noise(design, OBSERVERS, trailing_edge_thickness=1e-3, trailing_edge_angle=-2.0)
+    for angle in (-2.0, "16", np.nan):
+        with pytest.raises(ValueError, match=r"trailing_edge_angle must be a finite number in deg within \[0, 30\]"):
+            rotor_noise(design, OBSERVERS, trailing_edge_thickness=1e-3, trailing_edge_angle=angle)
+    with pytest.raises(ValueError, match="got inf at design 0, station 2"):
+        rotor_noise(design, OBSERVERS, trailing_edge_thickness=[1e-3, 1e-3, np.inf] + [1e-3] * (design.chord.size - 3))
 
 
 def test_azimuths(design):

@@ -67,7 +67,8 @@ def shape_g5_psi14(ratio, eta):
     root = sqrt(6.25 + square(m * mu))
     eta0, k = -m * mu * mu / root, root - 2.5
     # Eq. (76); each branch sees only points of its own interval (piecewise), so the square roots stay real
-    # (the third's radicand is floored: 1194.99 * 0.03616^2 exceeds 1.5625 by 6e-6, a rounding of the report's).
+    # (the third's radicand is floored: 1194.99 * 0.03616^2 exceeds 1.5625 by 6e-6, a rounding of the report's;
+    # the fit itself has a vertical tangent there, so its derivative grows large within about 1e-6 of the edge).
     return piecewise(eta, [real_value(eta0), 0.0, 0.03616], [
         lambda e: m * e + k,
         lambda e: 2.5 * sqrt(1.0 - square(e / mu)) - 2.5,
@@ -86,7 +87,9 @@ def shape_g5(ratio, psi_deg, strouhal_ratio):
     g5_0 = shape_g5_psi14(6.724 * ratio * ratio - 4.019 * ratio + 1.107, eta)  # Eq. (82)
     g5 = g5_0 + 0.0714 * psi_deg * (g5_14 - g5_0)
     g5 = where(real_value(g5) > 0.0, 0.0 * g5, g5)
-    cap = shape_g5_psi14(0.25 + 0.0 * real_value(eta), eta)
+    # The report's listing evaluates the cap with its branch 'ratio >= 0.25' of Eq. (78) (mu = 0.121125), where
+    # piecewise would put 0.25 itself in the lower one (0.1211): the next float above 0.25 takes that branch.
+    cap = shape_g5_psi14(np.nextafter(0.25, 1.0) + 0.0 * real_value(eta), eta)
     return where(real_value(g5) > real_value(cap), cap, g5)
 
 

@@ -113,7 +113,8 @@ def piecewise(x, edges, branches, pure=False):
     Each branch is evaluated on ``x`` replaced, outside its own interval, by a point inside it (the
     midpoint of a bounded interval, else its finite edge), so branches with a restricted domain (square
     roots) never see a value outside it; the result is assembled with :func:`where`.  A NaN argument gives
-    NaN (value and partials), never a branch's number.
+    NaN (the value and the partials of the argument's own seeds), never a branch's number; -inf belongs to
+    the first branch, +inf to the last.
 
     Parameters
     ----------
@@ -136,7 +137,7 @@ def piecewise(x, edges, branches, pure=False):
         return _piecewise_points(x, xr, lower, upper, branches)
     result = None
     for i, (lo, hi, branch) in enumerate(zip(lower, upper, branches)):
-        inside = (xr > lo) & (xr <= hi)
+        inside = (xr <= hi) if i == 0 else (xr > lo) & (xr <= hi)  # -inf belongs to the first branch
         if len(branches) == 1:
             out = branch(x)
         else:
@@ -153,8 +154,8 @@ def _piecewise_points(x, xr, lower, upper, branches):
     x = np.asarray(x)
     out = np.empty(x.shape, dtype=np.result_type(x, float))
     covered = np.zeros(x.shape, dtype=bool)
-    for lo, hi, branch in zip(lower, upper, branches):
-        inside = (xr > lo) & (xr <= hi)
+    for i, (lo, hi, branch) in enumerate(zip(lower, upper, branches)):
+        inside = (xr <= hi) if i == 0 else (xr > lo) & (xr <= hi)
         if inside.any():
             out[inside] = branch(x[inside])
             covered |= inside
