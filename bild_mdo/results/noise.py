@@ -185,8 +185,23 @@ class NoiseResult:
                     text[i, k] = f"band {_nominal(self.band_frequencies[b]):g}"
         return text
 
+    def _first(self, value):
+        return _first_of(value, self.is_batch)
+
+    def mechanism_levels(self, design=0, observer=0):
+        """Overall broadband level (dB) of each BPM mechanism at one observer: ``{name: dB}``, sums over bands."""
+        def pick(value):
+            return value[design, observer] if self.is_batch else value[observer]
+        return {name: float(spl_db(pick(value).sum(-1))) for name, value in self.source_pressure_squared.items()}
+
     def _notes(self):
         notes = []
+        if self.source_pressure_squared and np.any(self.broadband_pressure_squared > 0.0):
+            levels = self.mechanism_levels()
+            heard = ", ".join(f"{name} {level:.1f}" for name, level in levels.items()
+                              if np.any(self._first(self.source_pressure_squared[name]) > 0.0))
+            notes.append(textwrap.fill(f"broadband by mechanism, design 0, observer 0 [dB]: {heard}", _WIDTH,
+                                       subsequent_indent="  "))
         near = np.flatnonzero(self.distance < _NEAR_FIELD_RADII * np.max(self.radius))
         if near.size:
             notes.append(textwrap.fill(f"note: observer(s) {', '.join(map(str, near))} within {_NEAR_FIELD_RADII:g} "
@@ -197,6 +212,10 @@ class NoiseResult:
                                        "compact, subsonic tonal model loses accuracy as the tip Mach number nears 1",
                                        _WIDTH, subsequent_indent="  "))
         return notes
+
+
+def _first_of(value, is_batch):
+    return value[0, 0] if is_batch else value[0]
 
 
 def _nominal(frequency):

@@ -150,3 +150,17 @@ def test_azimuths(design):
     assert np.max(np.abs(default[2] - reference[2])) < 0.12 < 1.0 < np.max(np.abs(coarse[2] - reference[2]))
     with pytest.raises(ValueError, match="num_azimuth must be an integer >= 1"):
         rotor_noise(design, OBSERVERS, num_azimuth=0)
+
+
+def test_mechanism_levels(design):
+    """The overall level of each BPM mechanism: their incoherent sum is the broadband level of the observer
+    (a physical invariant); the summary names the mechanisms heard (a tripped layer has no LBL-VS)."""
+    noise = rotor_noise(design, OBSERVERS, num_harmonics=2, band_frequencies=BANDS, trailing_edge_thickness=5e-4)
+    for k in range(len(OBSERVERS)):
+        levels = noise.mechanism_levels(observer=k)
+        assert set(levels) == set(BROADBAND_SOURCES) and levels["lbl_vs"] == -100.0
+        total = 10 * np.log10(sum(10 ** (level / 10) for name, level in levels.items() if name != "lbl_vs"))
+        assert total == pytest.approx(10 * np.log10(noise.broadband_pressure_squared[k].sum() / 4e-10), abs=1e-9)
+    text = noise.summary()
+    notes = text[text.index("broadband by mechanism"):]
+    assert "separation" in notes and "bluntness" in notes and "lbl_vs" not in notes
