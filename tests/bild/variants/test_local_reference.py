@@ -173,6 +173,9 @@ def _small_rotor_reference(ref_chord):
     return prob
 
 
+# In hover the reference state's partials w.r.t. v_axial vanish (they grow as v_axial: 2.2e-8 rad per m/s at
+# 1e-3 m/s, 2.2e-5 at 1 m/s, measured), so OpenMDAO's zero-derivative warning is expected here.
+@pytest.mark.filterwarnings("ignore:(?s).*has zero derivatives")
 def test_the_reference_state_is_the_one_a_station_at_r_ref_takes():
     """Invariant: a station at r_ref takes the reference state at its lambda.  On the small hover rotor at
     c_ref 0.0254 m the state of least cd/cl with that chord is not one (a station at r_ref takes another sheet at
