@@ -178,3 +178,10 @@ def sweep_polar(airfoil):
                 polar.name = key
         _POLARS[key] = polar
     return polar
+
+
+def polar_from(airfoil):
+    """The polar of any airfoil argument of the analysis and optimisation entry points: text in every form of
+    :func:`sweep_polar` (spanwise sets, ``@re=``), anything else as
+    :func:`~bild_mdo.airfoil.builtin.resolve_polar` takes it (a Polar, None for the built-in NACA 4412)."""
+    return sweep_polar(airfoil) if isinstance(airfoil, str) else resolve_polar(airfoil)

@@ -8,8 +8,7 @@ import numpy as np
 import openmdao.api as om
 
 from bild_mdo import validation
-from bild_mdo.airfoil.builtin import resolve_polar
-from bild_mdo.airfoil.text import sweep_polar
+from bild_mdo.airfoil.text import polar_from
 from bild_mdo.atmosphere import MAX_ALTITUDE, isa
 from bild_mdo.bem.analyze_inclined import check_inflow, inclined_arguments, run_inclined
 from bild_mdo.bem.bem_group import BEMAnalysisGroup
@@ -220,7 +219,7 @@ def analyze_rotor(chord, twist, radius, hub_radius, rpm, v_axial, num_blades, po
         With ``on_invalid='raise'`` and invalid stations; with ``solve_range='full'`` where no
         sign change exists; where the total torque is zero (no performance metrics).
     """
-    polar = sweep_polar(polar) if isinstance(polar, str) else resolve_polar(polar)
+    polar = polar_from(polar)
     if fluid is not None:
         if rho is not None or mu is not None or speed_of_sound is not None:
             raise ValueError("give either fluid or rho, mu (and speed_of_sound), not both")

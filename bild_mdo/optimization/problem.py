@@ -24,8 +24,7 @@ from __future__ import annotations
 import numpy as np
 import openmdao.api as om
 
-from bild_mdo.airfoil.builtin import resolve_polar
-from bild_mdo.airfoil.text import sweep_polar
+from bild_mdo.airfoil.text import polar_from
 from bild_mdo.atmosphere import isa
 from bild_mdo.bem.turbine_polar import TurbinePolar
 from bild_mdo.optimization.bem_optimization_group import BEMOptimizationGroup
@@ -201,7 +200,7 @@ def build_optimization_problem(v_axial=None, rpm=None, radius=None, hub_radius=N
     driver = make_driver(optimizer, tol, maxiter, print_level)
 
     prob = om.Problem(reports=False)
-    polar = sweep_polar(polar) if isinstance(polar, str) else resolve_polar(polar)
+    polar = polar_from(polar)
     polar = TurbinePolar(polar) if rotor_type == "turbine" else polar
     group = BEMOptimizationGroup(num_nodes=1, num_radial=num_radial, num_blades=num_blades,
                                  polar=polar, loss_model=loss_model,
