@@ -99,18 +99,10 @@ def bluntness_pressure_squared(frequency, chord, span, speed, mach, alpha, reyno
 
     Parameters
     ----------
-    frequency : array or Jet
-        Band centre frequency (Hz) at the source.
-    chord, span : array or Jet
-        Chord ``c`` and span ``L`` (m).
-    speed, mach : array or Jet
-        Flow speed ``U`` (m/s) and Mach number ``M``.
-    alpha : array or Jet
-        Angle of attack ``alpha*`` (rad): sets the displacement thicknesses.
-    reynolds : array or Jet
-        Chord Reynolds number ``R_c``.
-    distance, d_high : array or Jet
-        Observer distance ``r_e`` (m) and high-frequency directivity ``D_h``.
+    frequency, chord, span, speed, mach, alpha, reynolds, distance, d_high : array or Jet
+        As in :func:`~bild_mdo.acoustics.bpm.laminar_vortex_shedding.lbl_vs_pressure_squared` (source frequency
+        in Hz, chord and span in m, ``U`` in m/s, ``M``, ``alpha*`` in rad, ``R_c``, ``r_e`` in m, ``D_h``);
+        ``alpha*`` and ``R_c`` set the displacement thicknesses.
     thickness : array or Jet
         Trailing-edge thickness ``h`` (m), positive.
     psi_deg : float or array
