@@ -196,7 +196,7 @@ class NoiseResult:
 
     def _notes(self):
         notes = []
-        if self.source_pressure_squared and np.any(self.broadband_pressure_squared > 0.0):
+        if self.source_pressure_squared and np.any(self._first(self.broadband_pressure_squared) > 0.0):
             levels = self.mechanism_levels()
             heard = ", ".join(f"{name} {level:.1f}" for name, level in levels.items()
                               if np.any(self._first(self.source_pressure_squared[name]) > 0.0))
