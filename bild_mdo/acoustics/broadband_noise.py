@@ -16,8 +16,9 @@ over azimuth, summed over stations and times the number of blades::
 
 Trailing-edge bluntness vortex shedding (TEB-VS, Eq. 70) needs the trailing-edge thickness ``h`` of each
 station (input ``trailing_edge_thickness``, m; default 0, a sharp edge, which makes no bluntness noise: the
-level vanishes as ``h -> 0``, faster than ``h^2.75``; measured exponents 4.3 at ``Psi = 14``, 21 at 0) and the solid angle ``Psi`` of the edge (option ``trailing_edge_angle``, deg,
-default 14, a NACA 0012's); :mod:`~bild_mdo.acoustics.bpm.bluntness`.
+level vanishes as ``h -> 0``, faster than ``h^2.75``; measured exponents 4.3 at ``Psi = 14``, 21 at 0) and
+the solid angle ``Psi`` of the edge (option ``trailing_edge_angle``, deg, default 14, a NACA 0012's);
+:mod:`~bild_mdo.acoustics.bpm.bluntness`.
 
 The tip vortex (Eq. 61, a rounded or flat tip) takes the chord, ``W``, ``phi`` and ``alpha`` of the
 outermost station (``alpha'_TIP = tip_alpha_correction * alpha``, Eq. 65) and sits at the tip radius ``R``.
@@ -228,12 +229,13 @@ class BroadbandNoiseComp(om.ExplicitComponent):
                 self.declare_partials(of, wrt, rows=rows, cols=cols)
 
     # ----- the model ------------------------------------------------------------------------------------
-    def _evaluate(self, inputs, jets):
-        """Per-station spectra (arrays or jets) of the segment sources and the tip, and their geometry jets."""
+    def _evaluate(self, inputs, jets, azimuths):
+        """Per-station spectra (arrays or jets) of the segment sources and the tip, and their geometry jets, at
+        the first ``azimuths`` of the ``num_azimuth`` equal steps (:meth:`_azimuths`)."""
         o = self.options
         nr = o["num_radial"]
         tripped = o["boundary_layer"] == "tripped"
-        psi = 2.0 * np.pi * np.arange(self._azimuths(inputs)) / o["num_azimuth"]
+        psi = 2.0 * np.pi * np.arange(azimuths) / o["num_azimuth"]
         azimuth = psi[None, None, None, :, None]
         freq = np.asarray(o["band_frequencies"], dtype=float)
         per_node = {k: inputs[k][:, None, None, None, None] for k in _NODE}
@@ -306,8 +308,9 @@ class BroadbandNoiseComp(om.ExplicitComponent):
 
     def compute(self, inputs, outputs):
         nn, _, no, ns, nb = self._sizes()
-        scale = self.options["num_blades"] / self._azimuths(inputs)
-        spectra, _, _ = self._evaluate(inputs, jets=False)
+        azimuths = self._azimuths(inputs)
+        scale = self.options["num_blades"] / azimuths
+        spectra, _, _ = self._evaluate(inputs, False, azimuths)
         out = np.zeros((nn, no, ns, nb), dtype=inputs["chord"].dtype)
         for s, p2 in enumerate(spectra):
             if p2 is not None:
@@ -318,9 +321,10 @@ class BroadbandNoiseComp(om.ExplicitComponent):
     def compute_partials(self, inputs, partials):
         self._check_memory(PARTIALS_BYTES, "the broadband noise's partials")
         nn, nr, no, ns, nb = self._sizes()
-        on_axis = self._azimuths(inputs) != self.options["num_azimuth"]
-        scale = self.options["num_blades"] / self._azimuths(inputs)
-        spectra, (seg, geo), (tip, geo_tip) = self._evaluate(inputs, jets=True)
+        azimuths = self._azimuths(inputs)
+        on_axis = azimuths != self.options["num_azimuth"]
+        scale = self.options["num_blades"] / azimuths
+        spectra, (seg, geo), (tip, geo_tip) = self._evaluate(inputs, True, azimuths)
         full = {name: np.zeros((nn, no, ns, nb, nr)) for name in _STATION}
         full.update({name: np.zeros((nn, no, ns, nb)) for name in _NODE})
         full["observer_position"] = np.zeros((nn, no, ns, nb, 3))

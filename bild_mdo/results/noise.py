@@ -185,21 +185,21 @@ class NoiseResult:
                     text[i, k] = f"band {_nominal(self.band_frequencies[b]):g}"
         return text
 
-    def _first(self, value):
-        return _first_of(value, self.is_batch)
+    def _at(self, value, design=0, observer=0):
+        """``value`` (per observer, or per design and observer of a batch) of one design and observer."""
+        return value[design, observer] if self.is_batch else value[observer]
 
     def mechanism_levels(self, design=0, observer=0):
         """Overall broadband level (dB) of each BPM mechanism at one observer: ``{name: dB}``, sums over bands."""
-        def pick(value):
-            return value[design, observer] if self.is_batch else value[observer]
-        return {name: float(spl_db(pick(value).sum(-1))) for name, value in self.source_pressure_squared.items()}
+        return {name: float(spl_db(self._at(value, design, observer).sum(-1)))
+                for name, value in self.source_pressure_squared.items()}
 
     def _notes(self):
         notes = []
-        if self.source_pressure_squared and np.any(self._first(self.broadband_pressure_squared) > 0.0):
+        if self.source_pressure_squared and np.any(self._at(self.broadband_pressure_squared) > 0.0):
             levels = self.mechanism_levels()
             heard = ", ".join(f"{name} {level:.1f}" for name, level in levels.items()
-                              if np.any(self._first(self.source_pressure_squared[name]) > 0.0))
+                              if np.any(self._at(self.source_pressure_squared[name]) > 0.0))
             notes.append(textwrap.fill(f"broadband by mechanism, design 0, observer 0 [dB]: {heard}", _WIDTH,
                                        subsequent_indent="  "))
         near = np.flatnonzero(self.distance < _NEAR_FIELD_RADII * np.max(self.radius))
@@ -212,10 +212,6 @@ class NoiseResult:
                                        "compact, subsonic tonal model loses accuracy as the tip Mach number nears 1",
                                        _WIDTH, subsequent_indent="  "))
         return notes
-
-
-def _first_of(value, is_batch):
-    return value[0, 0] if is_batch else value[0]
 
 
 def _nominal(frequency):
@@ -378,10 +374,7 @@ def _trailing_edge(thickness, angle, shape):
     except (TypeError, ValueError):
         raise ValueError(f"trailing_edge_thickness must be one value or one per station (shape {shape[1:]} or "
                          f"{shape}) in metres, got {np.shape(thickness)}") from None
-    bad = np.argwhere(~(np.isfinite(h) & (h >= 0.0)))
-    if bad.size:
-        raise ValueError(f"trailing_edge_thickness must be finite and >= 0 (m), got {h[tuple(bad[0])]:.6g} at "
-                         f"design {bad[0][0]}, station {bad[0][1]}")
+    validation.non_negative("trailing_edge_thickness", h, units="m", ndim=(2,))
     validation.in_range("trailing_edge_angle", angle, 0.0, MAX_TRAILING_EDGE_ANGLE, units="deg", ndim=(0,))
     return h
 
